@@ -1,0 +1,42 @@
+#pragma once
+// One run of a scene: DofMap → assembly → MUMPS → generalized-α, with results written as it goes.
+// Used by the `alphaflex run` command and by the tests (in-process runs of scenes).
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+#include "alphaflex/io/scene.hpp"
+
+namespace alphaflex {
+
+struct RunOptions {
+  std::string outdir = ".";
+  bool write_results = true;  ///< HDF5/XDMF/CSV (tests may switch them off)
+  bool verbose = true;        ///< header and summary on rank 0
+};
+
+struct RunSummary {
+  int steps = 0;
+  long newton_total = 0;
+  int newton_max = 0;
+  int unknowns = 0, coordinates = 0, multipliers = 0;
+  int factorizations = 0, symbolic_analyses = 0;
+  double wall = 0.0;
+  double projection = 0.0;  ///< largest change of q0 by the consistent start
+  PhaseTimes times;
+  MechanicalState final_state;
+  std::vector<double> final_sensors;  ///< sensor values at the final time, in scene order
+  std::vector<double> times_out;      ///< t of every step (including 0)
+  std::vector<std::vector<double>> sensor_history;  ///< [step][sensor]
+  std::string h5, xdmf, csv;
+};
+
+/// Runs `scene` to its t_end. Throws InputError / SolverError (on every rank alike) on failure,
+/// after writing the last converged state.
+RunSummary run_simulation(Scene& scene, const RunOptions& options, MPI_Comm comm);
+
+/// The summary as printed by `alphaflex run`.
+std::string format_summary(const Scene& scene, const RunSummary& s);
+
+}  // namespace alphaflex

@@ -1,0 +1,74 @@
+#pragma once
+// Assembly of the saddle-point system of a constrained mechanical model into PETSc objects:
+//
+//     S = [ s·(c_M M + c_C C + c_K (K + K_Φ) + c_I I)   s·μ·Φ_qᵀ ]     r = [ s·(Σ_e r_e + Φ_qᵀ λ) ]
+//         [ Φ_q                                           0     ]         [ constraint rows      ]
+//
+// with the row scale s and the multiplier scale μ (the unknown of the multiplier rows is Δλ/μ).
+// The integrator chooses the coefficients; this module knows nothing of time integration nor of
+// what the elements are. Each rank evaluates the elements and joints it owns (DofMap) and adds
+// into MATAIJ/VECMPI with exact preallocation; off-rank rows travel through PETSc's stash.
+#include <petscmat.h>
+#include <petscvec.h>
+
+#include <vector>
+
+#include "alphaflex/model/model.hpp"
+#include "alphaflex/partition/dof_map.hpp"
+
+namespace alphaflex {
+
+struct AssemblyCoefficients {
+  double mass = 0.0, damping = 0.0, stiffness = 0.0, identity = 0.0;
+  double row_scale = 1.0;         ///< s: multiplies every dynamic row (Bottasso scaling: βh²)
+  double multiplier_scale = 1.0;  ///< μ: Δλ = μ × (solution component); Bottasso: 1/(βh²)
+};
+
+/// What the multiplier rows of the residual contain (and whether element residuals are added).
+enum class ConstraintRows {
+  Position,      ///< Φ(q, t); elements left out (projection of q0 onto Φ = 0)
+  Velocity,      ///< Φ_q q̇ + Φ_t; elements left out (projection of q̇0)
+  Acceleration,  ///< Φ_q q̈ + (Φ_q q̇)_q q̇ + …; elements in (consistent q̈0, λ0)
+  Dynamic,       ///< Φ(q, t); elements in (generalized-α step)
+};
+
+/// Residual and iterate split by kind, in model order, on every rank.
+struct ModelVector {
+  Eigen::VectorXd dofs, multipliers;
+};
+
+class SaddlePointSystem {
+ public:
+  SaddlePointSystem(const Model& model, const DofMap& map, MPI_Comm comm);
+  ~SaddlePointSystem();
+  SaddlePointSystem(const SaddlePointSystem&) = delete;
+  SaddlePointSystem& operator=(const SaddlePointSystem&) = delete;
+
+  /// Assembles r (always) and S (if `matrix`) at state `s`.
+  PetscErrorCode assemble(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows, bool matrix);
+
+  Mat matrix() const { return S_; }
+  Vec residual() const { return r_; }
+  /// A vector with the layout of the residual (for solutions).
+  Vec solution() const { return x_; }
+
+  /// Copies a distributed vector with this layout to every rank, in model order.
+  PetscErrorCode to_model(Vec v, ModelVector& out);
+
+  const DofMap& dof_map() const { return map_; }
+  const Model& model() const { return model_; }
+
+ private:
+  PetscErrorCode preallocate();
+
+  const Model& model_;
+  const DofMap& map_;
+  MPI_Comm comm_;
+  Mat S_ = nullptr;
+  Vec r_ = nullptr, x_ = nullptr, all_ = nullptr;
+  VecScatter to_all_ = nullptr;
+  // Cached per element / joint: model-order unknowns and their global indices.
+  std::vector<std::vector<int>> elem_dofs_, elem_rows_, con_dofs_, con_rows_, con_mults_;
+};
+
+}  // namespace alphaflex

@@ -1,0 +1,21 @@
+#pragma once
+// Error types of alphaflex. Every error that reaches the user says where (file, key, entity) and
+// what was expected; the application maps each type to a non-zero exit code on all MPI ranks.
+#include <stdexcept>
+#include <string>
+
+namespace alphaflex {
+
+/// Bad user input: a scene key, a value, a reference to something that does not exist.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A numerical failure the user can act on: Newton did not converge, a singular iteration matrix.
+class SolverError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace alphaflex

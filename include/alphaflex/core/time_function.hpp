@@ -1,0 +1,31 @@
+#pragma once
+// Scalar functions of time f(t) with their first two derivatives, for time-dependent loads (and
+// later prescribed motions, whose constraint derivatives Φ_t, Φ_tt need f' and f'').
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace alphaflex {
+
+class TimeFunction {
+ public:
+  virtual ~TimeFunction() = default;
+  virtual double value(double t) const = 0;
+  virtual double derivative(double t) const = 0;
+  virtual double second_derivative(double t) const = 0;
+};
+
+using TimeFunctionPtr = std::shared_ptr<const TimeFunction>;
+
+/// f(t) = c.
+TimeFunctionPtr make_constant(double c);
+/// Linear from v0 at t0 to v1 at t1, constant outside.
+TimeFunctionPtr make_ramp(double t0, double t1, double v0, double v1);
+/// Quintic smooth step from v0 at t0 to v1 at t1 (zero slope and curvature at both ends).
+TimeFunctionPtr make_smooth_step(double t0, double t1, double v0, double v1);
+/// offset + amplitude sin(2π frequency t + phase).
+TimeFunctionPtr make_sine(double amplitude, double frequency, double phase, double offset);
+/// Piecewise linear through (t_i, v_i), constant beyond the ends; t strictly increasing.
+TimeFunctionPtr make_table(std::vector<double> t, std::vector<double> v);
+
+}  // namespace alphaflex

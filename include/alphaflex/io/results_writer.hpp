@@ -1,0 +1,48 @@
+#pragma once
+// Results for ParaView and for scripts: an HDF5 file with one group per output step and an XDMF
+// index (temporal collections "bodies" and "joints", polyvertex grids, Precision="8" doubles),
+// plus the sensors as CSV (header row, first column t, 17 significant digits).
+//
+// With the replicated state of the core engine, rank 0 writes everything; the parallel issue
+// switches the HDF5 side to collective MPI-IO writes of the same layout.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "alphaflex/model/model.hpp"
+
+namespace alphaflex {
+
+class ResultsWriter {
+ public:
+  /// Creates OUTDIR/NAME.h5 (if `hdf5`), OUTDIR/NAME.xdmf and OUTDIR/NAME.csv on rank 0.
+  ResultsWriter(const Model& model, const std::string& outdir, const std::string& name, bool hdf5, int rank);
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  /// Sensors of this state (one CSV row).
+  void write_sensors(const MechanicalState& s);
+  /// Full state to HDF5 (one group) and a rewritten XDMF index.
+  void write_fields(const MechanicalState& s);
+  /// Flush and write the XDMF index (called at the end, also after a failure).
+  void finish();
+
+  std::string h5_path() const { return h5_path_; }
+  std::string xdmf_path() const { return xdmf_path_; }
+  std::string csv_path() const { return csv_path_; }
+  int fields_written() const { return static_cast<int>(times_.size()); }
+
+ private:
+  void write_xdmf() const;
+
+  const Model& model_;
+  bool active_, hdf5_;
+  std::string h5_path_, xdmf_path_, csv_path_, h5_name_;
+  long long file_ = -1;  // hid_t
+  std::FILE* csv_ = nullptr;
+  std::vector<double> times_;
+  std::vector<std::string> groups_;
+};
+
+}  // namespace alphaflex

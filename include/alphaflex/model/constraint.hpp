@@ -1,0 +1,47 @@
+#pragma once
+// A joint: holonomic constraints Φ(q, t) = 0 at position level (index 3) with one Lagrange
+// multiplier per equation. Like an element it sees only the local coordinates of its nodes.
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace alphaflex {
+
+/// The load a joint exerts on its first body, in the world frame: force, and moment about the
+/// joint point (planar joints use force.x, force.y and moment.z).
+struct JointReaction {
+  Eigen::Vector3d location = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+};
+
+class Constraint {
+ public:
+  Constraint(std::string name, std::vector<int> nodes) : name_(std::move(name)), nodes_(std::move(nodes)) {}
+  virtual ~Constraint() = default;
+
+  const std::string& name() const { return name_; }
+  const std::vector<int>& nodes() const { return nodes_; }
+  virtual const char* type() const = 0;
+  /// Number of equations (and multipliers).
+  virtual int size() const = 0;
+
+  /// Φ(q, t) and Φ_q (size() × local dofs).
+  virtual void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const = 0;
+  /// ∂(Φ_qᵀ λ)/∂q, the constraint's contribution to the tangent stiffness.
+  virtual void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
+                                   Eigen::MatrixXd& k) const = 0;
+  /// Φ_t (zero for scleronomic joints).
+  virtual void time_derivative(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi_t) const;
+  /// (Φ_q q̇)_q q̇ + 2 Φ_qt q̇ + Φ_tt, so that Φ̈ = Φ_q q̈ + this (consistent start, design §3).
+  virtual void acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t,
+                                 Eigen::VectorXd& c) const = 0;
+  /// The force and moment of the joint on its first body, from the multipliers.
+  virtual JointReaction reaction(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda) const = 0;
+
+ private:
+  std::string name_;
+  std::vector<int> nodes_;
+};
+
+}  // namespace alphaflex

@@ -1,0 +1,44 @@
+#pragma once
+// An element maps the local state of its nodes to a local residual and its tangents. It knows
+// nothing of PETSc, MPI, the DofMap or the integrator.
+//
+// Residual convention (Arnold & Brüls 2007, eq. 1): r = M(q) q̈ − g(q, q̇, t); the equations of
+// motion are Σ_e r_e + Φ_qᵀ λ = 0. Tangents: K = ∂r/∂q, C = ∂r/∂q̇, M = ∂r/∂q̈, from which the
+// integrator forms S_t = M β' + C γ' + K (eq. 7).
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace alphaflex {
+
+/// Coordinates, velocities and accelerations of an element's nodes, concatenated in node order.
+struct LocalState {
+  Eigen::VectorXd q, v, qdd;
+  double t = 0.0;
+};
+
+struct LocalResidual {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd K, C, M;
+  /// Sizes every block to n and zeroes it (tangents only if requested).
+  void reset(int n, bool tangent);
+};
+
+class Element {
+ public:
+  Element(std::string name, std::vector<int> nodes) : name_(std::move(name)), nodes_(std::move(nodes)) {}
+  virtual ~Element() = default;
+
+  const std::string& name() const { return name_; }
+  const std::vector<int>& nodes() const { return nodes_; }
+  virtual const char* type() const = 0;
+
+  /// Adds this element's r (and K, C, M if `tangent`) into `out`, which the caller has reset.
+  virtual void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const = 0;
+
+ private:
+  std::string name_;
+  std::vector<int> nodes_;
+};
+
+}  // namespace alphaflex

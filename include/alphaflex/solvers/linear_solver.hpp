@@ -1,0 +1,40 @@
+#pragma once
+// Direct solve of the saddle-point system: KSPPREONLY + PCLU + MATSOLVERMUMPS (the matrix is
+// indefinite and, with gyroscopic or damping terms, unsymmetric). The sparsity pattern is fixed,
+// so PETSc reuses MUMPS' symbolic analysis and only refactorizes numerically. Every default can be
+// overridden from the options database (-ksp_type, -pc_type, -pc_factor_mat_solver_type,
+// -mat_mumps_icntl_*, ...).
+#include <petscksp.h>
+
+#include <string>
+
+namespace alphaflex {
+
+class LinearSolver {
+ public:
+  explicit LinearSolver(MPI_Comm comm);
+  ~LinearSolver();
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  /// Numerical factorization of A (symbolic analysis only the first time).
+  PetscErrorCode factor(Mat A);
+  /// x = A⁻¹ b with the last factorization.
+  PetscErrorCode solve(Vec b, Vec x);
+
+  /// Empty when the last factor/solve succeeded; otherwise what failed, with MUMPS' INFOG codes.
+  const std::string& failure() const { return failure_; }
+  /// Number of symbolic analyses and numeric factorizations done so far.
+  int symbolic_count() const { return symbolic_; }
+  int numeric_count() const { return numeric_; }
+
+ private:
+  PetscErrorCode describe_failure(const char* phase);
+
+  KSP ksp_ = nullptr;
+  std::string failure_;
+  int symbolic_ = 0, numeric_ = 0;
+  PetscObjectState last_state_ = -1;
+};
+
+}  // namespace alphaflex

@@ -1,0 +1,207 @@
+#include "alphaflex/assembly/saddle_point_system.hpp"
+
+#include <set>
+
+namespace alphaflex {
+namespace {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+PetscErrorCode add_block(Mat S, const std::vector<int>& rows, const std::vector<int>& cols, const RowMajor& block) {
+  PetscFunctionBeginUser;
+  PetscCall(MatSetValues(S, static_cast<PetscInt>(rows.size()), rows.data(), static_cast<PetscInt>(cols.size()),
+                         cols.data(), block.data(), ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace
+
+SaddlePointSystem::SaddlePointSystem(const Model& model, const DofMap& map, MPI_Comm comm)
+    : model_(model), map_(map), comm_(comm) {
+  for (const auto& e : model.elements()) {
+    elem_dofs_.push_back(model.dofs_of(e->nodes()));
+    std::vector<int> rows;
+    for (int d : elem_dofs_.back()) rows.push_back(map.dof(d));
+    elem_rows_.push_back(rows);
+  }
+  for (size_t c = 0; c < model.constraints().size(); ++c) {
+    const auto& con = model.constraints()[c];
+    con_dofs_.push_back(model.dofs_of(con->nodes()));
+    std::vector<int> rows, mults;
+    for (int d : con_dofs_.back()) rows.push_back(map.dof(d));
+    const int first = model.first_multiplier(static_cast<int>(c));
+    for (int k = 0; k < con->size(); ++k) mults.push_back(map.multiplier(first + k));
+    con_rows_.push_back(rows);
+    con_mults_.push_back(mults);
+  }
+  PetscCallAbort(comm_, preallocate());
+}
+
+SaddlePointSystem::~SaddlePointSystem() {
+  VecScatterDestroy(&to_all_);
+  VecDestroy(&all_);
+  VecDestroy(&x_);
+  VecDestroy(&r_);
+  MatDestroy(&S_);
+}
+
+PetscErrorCode SaddlePointSystem::preallocate() {
+  PetscFunctionBeginUser;
+  const int n = map_.global_size();
+  const int lo = map_.owned_begin(), hi = map_.owned_end();
+  // Exact pattern of the owned rows: every rank sees the whole (replicated) connectivity.
+  std::vector<std::set<int>> pattern(static_cast<size_t>(hi - lo));
+  auto couple = [&](const std::vector<int>& rows, const std::vector<int>& cols) {
+    for (int r : rows)
+      if (r >= lo && r < hi)
+        for (int c : cols) pattern[static_cast<size_t>(r - lo)].insert(c);
+  };
+  for (int i = 0; i < model_.num_dofs(); ++i) couple({map_.dof(i)}, {map_.dof(i)});
+  for (int j = 0; j < model_.num_multipliers(); ++j) couple({map_.multiplier(j)}, {map_.multiplier(j)});
+  for (const auto& rows : elem_rows_) couple(rows, rows);
+  for (size_t c = 0; c < con_rows_.size(); ++c) {
+    couple(con_rows_[c], con_rows_[c]);
+    couple(con_rows_[c], con_mults_[c]);
+    couple(con_mults_[c], con_rows_[c]);
+  }
+  std::vector<PetscInt> d_nnz, o_nnz;
+  for (const auto& cols : pattern) {
+    PetscInt d = 0;
+    for (int c : cols) d += (c >= lo && c < hi) ? 1 : 0;
+    d_nnz.push_back(d);
+    o_nnz.push_back(static_cast<PetscInt>(cols.size()) - d);
+  }
+  PetscCall(MatCreate(comm_, &S_));
+  PetscCall(MatSetSizes(S_, hi - lo, hi - lo, n, n));
+  PetscCall(MatSetType(S_, MATAIJ));
+  PetscCall(MatSetOptionsPrefix(S_, "alphaflex_"));
+  PetscCall(MatSetFromOptions(S_));
+  PetscCall(MatSeqAIJSetPreallocation(S_, 0, d_nnz.data()));
+  PetscCall(MatMPIAIJSetPreallocation(S_, 0, d_nnz.data(), 0, o_nnz.data()));
+  PetscCall(MatSetOption(S_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatCreateVecs(S_, &x_, &r_));
+  PetscCall(VecScatterCreateToAll(x_, &to_all_, &all_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const AssemblyCoefficients& c,
+                                           ConstraintRows rows, bool matrix) {
+  PetscFunctionBeginUser;
+  PetscCall(VecSet(r_, 0.0));
+  if (matrix) PetscCall(MatZeroEntries(S_));
+  const int rank = map_.rank();
+  const bool elements_in = rows == ConstraintRows::Acceleration || rows == ConstraintRows::Dynamic;
+  const double sc = c.row_scale;
+
+  LocalState ls;
+  LocalResidual lr;
+  for (size_t e = 0; e < model_.elements().size(); ++e) {
+    if (map_.element_owner(static_cast<int>(e)) != rank) continue;
+    const auto& idx = elem_dofs_[e];
+    const auto& g = elem_rows_[e];
+    const int n = static_cast<int>(idx.size());
+    if (matrix) {
+      // The pattern must hold every entry from the first assembly on, even with zero values.
+      RowMajor block = RowMajor::Zero(n, n);
+      if (elements_in) {
+        ls.q = gather(s.q, idx);
+        ls.v = gather(s.v, idx);
+        ls.qdd = gather(s.qdd, idx);
+        ls.t = s.t;
+        lr.reset(n, true);
+        model_.elements()[e]->evaluate(ls, lr, true);
+        block = sc * (c.mass * lr.M + c.damping * lr.C + c.stiffness * lr.K);
+      }
+      PetscCall(add_block(S_, g, g, block));
+    }
+    if (elements_in) {
+      if (!matrix) {
+        ls.q = gather(s.q, idx);
+        ls.v = gather(s.v, idx);
+        ls.qdd = gather(s.qdd, idx);
+        ls.t = s.t;
+        lr.reset(n, false);
+        model_.elements()[e]->evaluate(ls, lr, false);
+      }
+      const Eigen::VectorXd re = sc * lr.r;
+      PetscCall(VecSetValues(r_, n, g.data(), re.data(), ADD_VALUES));
+    }
+  }
+
+  Eigen::VectorXd phi, extra;
+  Eigen::MatrixXd phi_q, kc;
+  for (size_t k = 0; k < model_.constraints().size(); ++k) {
+    if (map_.constraint_owner(static_cast<int>(k)) != rank) continue;
+    const Constraint& con = *model_.constraints()[k];
+    const auto& idx = con_dofs_[k];
+    const int n = static_cast<int>(idx.size()), m = con.size();
+    const Eigen::VectorXd q = gather(s.q, idx);
+    const Eigen::VectorXd lam = s.lambda.segment(model_.first_multiplier(static_cast<int>(k)), m);
+    con.evaluate(q, s.t, phi, phi_q);
+
+    Eigen::VectorXd rc;  // multiplier rows
+    switch (rows) {
+      case ConstraintRows::Position:
+      case ConstraintRows::Dynamic: rc = phi; break;
+      case ConstraintRows::Velocity:
+        con.time_derivative(q, s.t, extra);
+        rc = phi_q * gather(s.v, idx) + extra;
+        break;
+      case ConstraintRows::Acceleration:
+        con.acceleration_term(q, gather(s.v, idx), s.t, extra);
+        rc = phi_q * gather(s.qdd, idx) + extra;
+        break;
+    }
+    PetscCall(VecSetValues(r_, m, con_mults_[k].data(), rc.data(), ADD_VALUES));
+    if (elements_in) {
+      const Eigen::VectorXd rq = sc * phi_q.transpose() * lam;
+      PetscCall(VecSetValues(r_, n, con_rows_[k].data(), rq.data(), ADD_VALUES));
+    }
+    if (matrix) {
+      RowMajor kblock = RowMajor::Zero(n, n);
+      if (c.stiffness != 0.0 && elements_in) {
+        con.geometric_stiffness(q, s.t, lam, kc);
+        kblock = sc * c.stiffness * kc;
+      }
+      PetscCall(add_block(S_, con_rows_[k], con_rows_[k], kblock));
+      const RowMajor bt = sc * c.multiplier_scale * phi_q.transpose();
+      PetscCall(add_block(S_, con_rows_[k], con_mults_[k], bt));
+      const RowMajor b = phi_q;
+      PetscCall(add_block(S_, con_mults_[k], con_rows_[k], b));
+      // Explicit zeros on the multiplier diagonal keep it in the pattern (some factorizations want it).
+      for (int g : con_mults_[k]) PetscCall(MatSetValue(S_, g, g, 0.0, ADD_VALUES));
+    }
+  }
+
+  if (matrix) {
+    // Diagonal of every owned node unknown: c_I (projections) or an explicit zero (pattern).
+    for (const Node& nd : model_.nodes()) {
+      if (map_.node_owner(static_cast<int>(&nd - model_.nodes().data())) != rank) continue;
+      for (int k = 0; k < nd.ndof; ++k) {
+        const PetscInt g = map_.dof(nd.first_dof + k);
+        PetscCall(MatSetValue(S_, g, g, sc * c.identity, ADD_VALUES));
+      }
+    }
+    PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(VecAssemblyBegin(r_));
+  PetscCall(VecAssemblyEnd(r_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::to_model(Vec v, ModelVector& out) {
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterBegin(to_all_, v, all_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_all_, v, all_, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* a = nullptr;
+  PetscCall(VecGetArrayRead(all_, &a));
+  out.dofs.resize(model_.num_dofs());
+  out.multipliers.resize(model_.num_multipliers());
+  for (int i = 0; i < model_.num_dofs(); ++i) out.dofs[i] = a[map_.dof(i)];
+  for (int j = 0; j < model_.num_multipliers(); ++j) out.multipliers[j] = a[map_.multiplier(j)];
+  PetscCall(VecRestoreArrayRead(all_, &a));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace alphaflex

@@ -1,0 +1,116 @@
+#include "alphaflex/core/time_function.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace alphaflex {
+namespace {
+
+class Constant final : public TimeFunction {
+ public:
+  explicit Constant(double c) : c_(c) {}
+  double value(double) const override { return c_; }
+  double derivative(double) const override { return 0.0; }
+  double second_derivative(double) const override { return 0.0; }
+
+ private:
+  double c_;
+};
+
+class Ramp final : public TimeFunction {
+ public:
+  Ramp(double t0, double t1, double v0, double v1) : t0_(t0), t1_(t1), v0_(v0), v1_(v1) {}
+  double value(double t) const override {
+    if (t <= t0_) return v0_;
+    if (t >= t1_) return v1_;
+    return v0_ + (v1_ - v0_) * (t - t0_) / (t1_ - t0_);
+  }
+  double derivative(double t) const override {
+    return (t > t0_ && t < t1_) ? (v1_ - v0_) / (t1_ - t0_) : 0.0;
+  }
+  double second_derivative(double) const override { return 0.0; }
+
+ private:
+  double t0_, t1_, v0_, v1_;
+};
+
+class SmoothStep final : public TimeFunction {
+ public:
+  SmoothStep(double t0, double t1, double v0, double v1) : t0_(t0), t1_(t1), v0_(v0), v1_(v1) {}
+  // s(x) = 10x³ − 15x⁴ + 6x⁵ on x ∈ [0,1]: C² at both ends.
+  double value(double t) const override {
+    const double x = clamp(t);
+    return v0_ + (v1_ - v0_) * x * x * x * (10.0 - 15.0 * x + 6.0 * x * x);
+  }
+  double derivative(double t) const override {
+    if (t <= t0_ || t >= t1_) return 0.0;
+    const double x = clamp(t);
+    return (v1_ - v0_) / (t1_ - t0_) * 30.0 * x * x * (1.0 - x) * (1.0 - x);
+  }
+  double second_derivative(double t) const override {
+    if (t <= t0_ || t >= t1_) return 0.0;
+    const double x = clamp(t), d = t1_ - t0_;
+    return (v1_ - v0_) / (d * d) * 60.0 * x * (1.0 - x) * (1.0 - 2.0 * x);
+  }
+
+ private:
+  double clamp(double t) const { return std::clamp((t - t0_) / (t1_ - t0_), 0.0, 1.0); }
+  double t0_, t1_, v0_, v1_;
+};
+
+class Sine final : public TimeFunction {
+ public:
+  Sine(double a, double f, double p, double o) : a_(a), w_(2.0 * M_PI * f), p_(p), o_(o) {}
+  double value(double t) const override { return o_ + a_ * std::sin(w_ * t + p_); }
+  double derivative(double t) const override { return a_ * w_ * std::cos(w_ * t + p_); }
+  double second_derivative(double t) const override { return -a_ * w_ * w_ * std::sin(w_ * t + p_); }
+
+ private:
+  double a_, w_, p_, o_;
+};
+
+class Table final : public TimeFunction {
+ public:
+  Table(std::vector<double> t, std::vector<double> v) : t_(std::move(t)), v_(std::move(v)) {}
+  double value(double t) const override {
+    if (t <= t_.front()) return v_.front();
+    if (t >= t_.back()) return v_.back();
+    const size_t i = segment(t);
+    return v_[i] + (v_[i + 1] - v_[i]) * (t - t_[i]) / (t_[i + 1] - t_[i]);
+  }
+  double derivative(double t) const override {
+    if (t <= t_.front() || t >= t_.back()) return 0.0;
+    const size_t i = segment(t);
+    return (v_[i + 1] - v_[i]) / (t_[i + 1] - t_[i]);
+  }
+  double second_derivative(double) const override { return 0.0; }
+
+ private:
+  size_t segment(double t) const {
+    return static_cast<size_t>(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin()) - 1;
+  }
+  std::vector<double> t_, v_;
+};
+
+}  // namespace
+
+TimeFunctionPtr make_constant(double c) { return std::make_shared<Constant>(c); }
+TimeFunctionPtr make_ramp(double t0, double t1, double v0, double v1) {
+  if (!(t1 > t0)) throw std::invalid_argument("ramp needs t1 > t0");
+  return std::make_shared<Ramp>(t0, t1, v0, v1);
+}
+TimeFunctionPtr make_smooth_step(double t0, double t1, double v0, double v1) {
+  if (!(t1 > t0)) throw std::invalid_argument("smooth_step needs t1 > t0");
+  return std::make_shared<SmoothStep>(t0, t1, v0, v1);
+}
+TimeFunctionPtr make_sine(double a, double f, double p, double o) { return std::make_shared<Sine>(a, f, p, o); }
+TimeFunctionPtr make_table(std::vector<double> t, std::vector<double> v) {
+  if (t.size() < 2 || t.size() != v.size())
+    throw std::invalid_argument("table needs t and values of equal length >= 2");
+  for (size_t i = 1; i < t.size(); ++i)
+    if (!(t[i] > t[i - 1])) throw std::invalid_argument("table times must increase strictly");
+  return std::make_shared<Table>(std::move(t), std::move(v));
+}
+
+}  // namespace alphaflex

@@ -1,0 +1,191 @@
+#include "alphaflex/io/results_writer.hpp"
+
+#include <hdf5.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "alphaflex/core/error.hpp"
+
+namespace alphaflex {
+namespace {
+
+void write_array(hid_t loc, const char* name, const double* data, hsize_t rows, hsize_t cols) {
+  const hsize_t dims[2] = {rows, cols};
+  const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
+  const hid_t set = H5Dcreate2(loc, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (set < 0) throw std::runtime_error(std::string("HDF5: cannot create dataset ") + name);
+  if (rows > 0) H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+  H5Dclose(set);
+  H5Sclose(space);
+}
+
+void write_ints(hid_t loc, const char* name, const std::vector<int>& v) {
+  const hsize_t dims[1] = {v.size()};
+  const hid_t space = H5Screate_simple(1, dims, nullptr);
+  const hid_t set = H5Dcreate2(loc, name, H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (!v.empty()) H5Dwrite(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Dclose(set);
+  H5Sclose(space);
+}
+
+}  // namespace
+
+ResultsWriter::ResultsWriter(const Model& model, const std::string& outdir, const std::string& name, bool hdf5,
+                             int rank)
+    : model_(model), active_(rank == 0), hdf5_(hdf5) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::absolute(outdir);
+  h5_name_ = name + ".h5";
+  h5_path_ = (dir / h5_name_).string();
+  xdmf_path_ = (dir / (name + ".xdmf")).string();
+  csv_path_ = (dir / (name + ".csv")).string();
+  if (!active_) return;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("output directory " + dir.string() + ": " + ec.message());
+  csv_ = std::fopen(csv_path_.c_str(), "w");
+  if (!csv_) throw InputError("cannot write " + csv_path_);
+  std::fprintf(csv_, "t");
+  for (const auto& s : model_.sensors()) std::fprintf(csv_, ",%s", s.name.c_str());
+  std::fprintf(csv_, "\n");
+  if (hdf5_) {
+    file_ = H5Fcreate(h5_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (file_ < 0) throw InputError("cannot create " + h5_path_);
+    const hid_t topo = H5Gcreate2(file_, "topology", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    std::vector<int> nodes(model_.nodes().size()), joints(model_.constraints().size());
+    for (size_t i = 0; i < nodes.size(); ++i) nodes[i] = static_cast<int>(i);
+    for (size_t i = 0; i < joints.size(); ++i) joints[i] = static_cast<int>(i);
+    write_ints(topo, "nodes", nodes);
+    write_ints(topo, "joints", joints);
+    H5Gclose(topo);
+  }
+}
+
+ResultsWriter::~ResultsWriter() {
+  if (csv_) std::fclose(csv_);
+  if (file_ >= 0) H5Fclose(file_);
+}
+
+void ResultsWriter::write_sensors(const MechanicalState& s) {
+  if (!active_) return;
+  std::fprintf(csv_, "%.17g", s.t);
+  for (const auto& sn : model_.sensors()) std::fprintf(csv_, ",%.17g", sn.evaluate(model_, s));
+  std::fprintf(csv_, "\n");
+}
+
+void ResultsWriter::write_fields(const MechanicalState& s) {
+  if (!active_ || !hdf5_) return;
+  const size_t nn = model_.nodes().size(), nj = model_.constraints().size();
+  std::vector<double> pos(3 * nn, 0.0), vel(3 * nn, 0.0), acc(3 * nn, 0.0), ang(nn, 0.0), axis(3 * nn, 0.0);
+  for (size_t i = 0; i < nn; ++i) {
+    const Node& n = model_.nodes()[i];
+    const PlanarMarker m = PlanarMarker::on_node(n, Eigen::Vector2d::Zero(), 0);
+    const Eigen::VectorXd q = s.q.segment(n.first_dof, n.ndof), v = s.v.segment(n.first_dof, n.ndof);
+    const Eigen::VectorXd a = s.qdd.segment(n.first_dof, n.ndof);
+    const Eigen::Vector2d p = m.position(q), pv = m.velocity(q, v);
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2, n.ndof);
+    m.add_jacobian(q, 1.0, J);
+    const Eigen::Vector2d pa = J * a + m.convective_acceleration(q, v);
+    const double th = n.has_angle() ? q[2] : 0.0;
+    for (int k = 0; k < 2; ++k) {
+      pos[3 * i + k] = p[k];
+      vel[3 * i + k] = pv[k];
+      acc[3 * i + k] = pa[k];
+    }
+    ang[i] = th;
+    axis[3 * i] = std::cos(th);
+    axis[3 * i + 1] = std::sin(th);
+  }
+  std::vector<double> jloc(3 * nj, 0.0), jforce(3 * nj, 0.0), jmoment(3 * nj, 0.0);
+  for (size_t c = 0; c < nj; ++c) {
+    const Constraint& con = *model_.constraints()[c];
+    const JointReaction r = con.reaction(gather(s.q, model_.dofs_of(con.nodes())), s.t,
+                                         s.lambda.segment(model_.first_multiplier(static_cast<int>(c)), con.size()));
+    for (int k = 0; k < 3; ++k) {
+      jloc[3 * c + k] = r.location[k];
+      jforce[3 * c + k] = r.force[k];
+      jmoment[3 * c + k] = r.moment[k];
+    }
+  }
+  char gname[32];
+  std::snprintf(gname, sizeof gname, "step_%06zu", times_.size());
+  const hid_t g = H5Gcreate2(file_, gname, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0) throw std::runtime_error("HDF5: cannot create group " + std::string(gname));
+  const hsize_t one = 1;
+  const hid_t aspace = H5Screate_simple(1, &one, nullptr);
+  const hid_t attr = H5Acreate2(g, "time", H5T_IEEE_F64LE, aspace, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attr, H5T_NATIVE_DOUBLE, &s.t);
+  H5Aclose(attr);
+  H5Sclose(aspace);
+  write_array(g, "node_position", pos.data(), nn, 3);
+  write_array(g, "node_velocity", vel.data(), nn, 3);
+  write_array(g, "node_acceleration", acc.data(), nn, 3);
+  write_array(g, "node_angle", ang.data(), nn, 1);
+  write_array(g, "node_axis", axis.data(), nn, 3);
+  write_array(g, "joint_location", jloc.data(), nj, 3);
+  write_array(g, "joint_force", jforce.data(), nj, 3);
+  write_array(g, "joint_moment", jmoment.data(), nj, 3);
+  // Generalized state in model order, for scripts and convergence studies.
+  write_array(g, "q", s.q.data(), static_cast<hsize_t>(s.q.size()), 1);
+  write_array(g, "v", s.v.data(), static_cast<hsize_t>(s.v.size()), 1);
+  write_array(g, "qdd", s.qdd.data(), static_cast<hsize_t>(s.qdd.size()), 1);
+  write_array(g, "lambda", s.lambda.data(), static_cast<hsize_t>(s.lambda.size()), 1);
+  H5Gclose(g);
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  times_.push_back(s.t);
+  groups_.push_back(gname);
+  std::fflush(csv_);
+}
+
+void ResultsWriter::finish() {
+  if (!active_) return;
+  std::fflush(csv_);
+  if (!hdf5_) return;
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+  write_xdmf();
+}
+
+void ResultsWriter::write_xdmf() const {
+  const size_t nn = model_.nodes().size(), nj = model_.constraints().size();
+  const std::string tmp = xdmf_path_ + ".tmp";
+  std::ofstream x(tmp);
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n";
+  auto item = [&](const std::string& g, const char* set, size_t rows, int cols) {
+    x << "      <DataItem Dimensions=\"" << rows;
+    if (cols > 1) x << " " << cols;
+    x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5_name_ << ":/" << g << "/" << set
+      << "</DataItem>\n";
+  };
+  auto grid = [&](const char* name, size_t n, const char* topo, const char* geom,
+                  std::initializer_list<std::pair<const char*, const char*>> attrs) {
+    x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < times_.size(); ++s) {
+      x << "   <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times_[s] << "\"/>\n"
+        << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\">\n"
+        << "      <DataItem Dimensions=\"" << n << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5_name_
+        << ":/topology/" << topo << "</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
+      item(groups_[s], geom, n, 3);
+      x << "    </Geometry>\n";
+      for (const auto& [aname, set] : attrs) {
+        const bool scalar = std::string(set) == "node_angle";
+        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\"" << (scalar ? "Scalar" : "Vector")
+          << "\" Center=\"Node\">\n";
+        item(groups_[s], set, n, scalar ? 1 : 3);
+        x << "    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  };
+  grid("bodies", nn, "nodes", "node_position",
+       {{"velocity", "node_velocity"}, {"acceleration", "node_acceleration"}, {"angle", "node_angle"},
+        {"axis", "node_axis"}});
+  if (nj > 0) grid("joints", nj, "joints", "joint_location", {{"force", "joint_force"}, {"moment", "joint_moment"}});
+  x << " </Domain>\n</Xdmf>\n";
+  x.close();
+  std::filesystem::rename(tmp, xdmf_path_);
+}
+
+}  // namespace alphaflex

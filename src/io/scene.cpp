@@ -1,0 +1,610 @@
+#include "alphaflex/io/scene.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/core/expression.hpp"
+#include "alphaflex/core/time_function.hpp"
+#include "alphaflex/elements/applied_load_2d.hpp"
+#include "alphaflex/elements/rigid_body_2d.hpp"
+#include "alphaflex/elements/spring_damper_2d.hpp"
+#include "alphaflex/joints/planar_joints.hpp"
+
+namespace alphaflex {
+namespace {
+
+/// Reading context: file label and named parameters; every error goes through fail().
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& key, const std::string& what) const {
+    std::ostringstream os;
+    os << file_;
+    if (at.IsDefined() && at.Mark().line >= 0) os << ":" << (at.Mark().line + 1);
+    os << ": " << key << ": " << what;
+    throw InputError(os.str());
+  }
+
+  void keys(const YAML::Node& map, const std::string& path, const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(map, path, "expected a map of keys");
+    for (const auto& kv : map) {
+      const std::string k = kv.first.as<std::string>();
+      if (!allowed.count(k)) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(kv.first, path + "." + k, "unknown key (allowed here: " + list + ")");
+      }
+    }
+  }
+
+  YAML::Node need(const YAML::Node& map, const std::string& key, const std::string& path) const {
+    const YAML::Node n = map[key];
+    if (!n) fail(map, path + "." + key, "missing (required)");
+    return n;
+  }
+
+  double number(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(n, key, "expected a number or an expression");
+    const std::string text = n.Scalar();
+    try {
+      const double v = evaluate_expression(text, scope_);
+      if (!std::isfinite(v)) fail(n, key, "'" + text + "' is not a finite number");
+      return v;
+    } catch (const std::invalid_argument& e) {
+      fail(n, key, std::string("expected a number, ") + e.what());
+    }
+  }
+  double number(const YAML::Node& map, const std::string& k, const std::string& path, double fallback) const {
+    return map[k] ? number(map[k], path + "." + k) : fallback;
+  }
+  double positive(const YAML::Node& n, const std::string& key, const std::string& what) const {
+    const double v = number(n, key);
+    if (!(v > 0.0)) fail(n, key, "expected a positive " + what + ", got " + n.Scalar());
+    return v;
+  }
+  double non_negative(const YAML::Node& n, const std::string& key, const std::string& what) const {
+    const double v = number(n, key);
+    if (!(v >= 0.0)) fail(n, key, "expected a non-negative " + what + ", got " + n.Scalar());
+    return v;
+  }
+  int integer(const YAML::Node& n, const std::string& key, int min) const {
+    const double v = number(n, key);
+    if (v != std::floor(v) || v < min) fail(n, key, "expected an integer >= " + std::to_string(min));
+    return static_cast<int>(v);
+  }
+  bool flag(const YAML::Node& n, const std::string& key) const {
+    if (n.IsScalar()) {
+      const std::string s = n.Scalar();
+      if (s == "true" || s == "on" || s == "yes" || s == "1") return true;
+      if (s == "false" || s == "off" || s == "no" || s == "0") return false;
+    }
+    fail(n, key, "expected on/off (or true/false)");
+  }
+  std::string text(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsScalar()) fail(n, key, "expected a string");
+    return n.Scalar();
+  }
+  Eigen::Vector2d vec2(const YAML::Node& n, const std::string& key) const {
+    if (!n.IsSequence() || n.size() != 2) fail(n, key, "expected a list of 2 numbers [x, y]");
+    return {number(n[0], key + "[0]"), number(n[1], key + "[1]")};
+  }
+  Eigen::Vector2d vec2(const YAML::Node& map, const std::string& k, const std::string& path,
+                       const Eigen::Vector2d& fallback) const {
+    return map[k] ? vec2(map[k], path + "." + k) : fallback;
+  }
+
+  TimeFunctionPtr function(const YAML::Node& n, const std::string& key) const {
+    if (n.IsScalar()) return make_constant(number(n, key));
+    if (!n.IsMap()) fail(n, key, "expected a number or a time function {type: ...}");
+    const std::string type = text(need(n, "type", key), key + ".type");
+    try {
+      if (type == "constant") {
+        keys(n, key, {"type", "value"});
+        return make_constant(number(need(n, "value", key), key + ".value"));
+      }
+      if (type == "ramp" || type == "smooth_step") {
+        keys(n, key, {"type", "t0", "t1", "from", "to"});
+        const double t0 = number(need(n, "t0", key), key + ".t0"), t1 = number(need(n, "t1", key), key + ".t1");
+        const double v0 = number(n, "from", key, 0.0), v1 = number(need(n, "to", key), key + ".to");
+        return type == "ramp" ? make_ramp(t0, t1, v0, v1) : make_smooth_step(t0, t1, v0, v1);
+      }
+      if (type == "sine") {
+        keys(n, key, {"type", "amplitude", "frequency", "phase", "offset"});
+        return make_sine(number(need(n, "amplitude", key), key + ".amplitude"),
+                         number(need(n, "frequency", key), key + ".frequency"), number(n, "phase", key, 0.0),
+                         number(n, "offset", key, 0.0));
+      }
+      if (type == "table") {
+        keys(n, key, {"type", "t", "values"});
+        std::vector<double> t, v;
+        const YAML::Node nt = need(n, "t", key), nv = need(n, "values", key);
+        if (!nt.IsSequence() || !nv.IsSequence()) fail(n, key, "t and values must be lists of numbers");
+        for (size_t i = 0; i < nt.size(); ++i) t.push_back(number(nt[i], key + ".t"));
+        for (size_t i = 0; i < nv.size(); ++i) v.push_back(number(nv[i], key + ".values"));
+        return make_table(t, v);
+      }
+    } catch (const std::invalid_argument& e) {
+      fail(n, key, e.what());
+    }
+    fail(n, key + ".type", "unknown time function '" + type + "' (expected constant, ramp, smooth_step, sine, table)");
+  }
+
+  void read_parameters(const YAML::Node& p) {
+    if (!p) return;
+    if (!p.IsMap()) fail(p, "parameters", "expected a map name: value");
+    for (const auto& kv : p) {
+      const std::string name = kv.first.as<std::string>();
+      scope_[name] = number(kv.second, "parameters." + name);
+    }
+  }
+
+ private:
+  std::string file_;
+  ExpressionScope scope_;
+};
+
+struct BodyRef {
+  int node = -1;  // -1 = ground
+};
+
+class SceneBuilder {
+ public:
+  SceneBuilder(Reader& rd, Model& model) : rd_(rd), model_(model) {}
+
+  int body(const YAML::Node& map, const std::string& key, const std::string& path, bool ground_ok) {
+    const YAML::Node n = rd_.need(map, key, path);
+    const std::string name = rd_.text(n, path + "." + key);
+    if (name == "ground") {
+      if (!ground_ok) rd_.fail(n, path + "." + key, "'ground' cannot be used here (expected a body)");
+      return -1;
+    }
+    const int id = model_.find_node(name);
+    if (id < 0) rd_.fail(n, path + "." + key, "no body named '" + name + "'" + known_bodies());
+    return id;
+  }
+
+  std::string known_bodies() const {
+    std::string s = " (bodies: ";
+    for (const auto& nd : model_.nodes()) s += nd.name + " ";
+    return s + "ground)";
+  }
+
+  /// Marker of `node` (or the ground) at `local` (world point for the ground).
+  PlanarMarker marker(int node, const Eigen::Vector2d& local, const std::vector<int>& nodes, const YAML::Node& at,
+                      const std::string& key) {
+    if (node < 0) return PlanarMarker::ground(local);
+    try {
+      return PlanarMarker::on_node(model_.node(node), local, model_.local_offset(nodes, node));
+    } catch (const std::invalid_argument& e) {
+      rd_.fail(at, key, "body '" + model_.node(node).name + "': " + e.what());
+    }
+  }
+
+  /// World position at t = 0 of a marker.
+  Eigen::Vector2d initial_position(int node, const Eigen::Vector2d& local) {
+    if (node < 0) return local;
+    const PlanarMarker m = PlanarMarker::on_node(model_.node(node), local, 0);
+    return m.position(model_.node(node).q0);
+  }
+
+  /// Local coordinates on `node` of the world point p at t = 0.
+  Eigen::Vector2d to_local(int node, const Eigen::Vector2d& p) {
+    if (node < 0) return p;
+    const Node& nd = model_.node(node);
+    if (nd.kind != NodeKind::RigidBody2D) return Eigen::Vector2d::Zero();
+    return rotate(-nd.q0[2], p - Eigen::Vector2d(nd.q0[0], nd.q0[1]));
+  }
+
+  Reader& rd_;
+  Model& model_;
+};
+
+void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<std::string>& warnings) {
+  if (!s) return;
+  rd.keys(s, "solver", {"scheme", "rho_inf", "alpha_m", "alpha_f", "beta", "gamma", "h", "t_end", "scaling",
+                        "consistent_start", "newton"});
+  const std::string scheme = s["scheme"] ? rd.text(s["scheme"], "solver.scheme") : "generalized-alpha";
+  const bool explicit_any = s["alpha_m"] || s["alpha_f"] || s["beta"] || s["gamma"];
+  const double rho = s["rho_inf"] ? rd.number(s["rho_inf"], "solver.rho_inf") : (scheme == "hht" ? 0.9 : 0.7);
+  try {
+    if (scheme == "generalized-alpha") {
+      if (explicit_any) {
+        if (s["rho_inf"]) rd.fail(s["rho_inf"], "solver.rho_inf", "give either rho_inf or alpha_m/alpha_f/beta/gamma, not both");
+        for (const char* k : {"alpha_m", "alpha_f", "beta", "gamma"})
+          if (!s[k]) rd.fail(s, std::string("solver.") + k, "missing: explicit parameters need all of alpha_m, alpha_f, beta, gamma");
+        rs.parameters = AlphaParameters::explicit_values(rd.number(s["alpha_m"], "solver.alpha_m"),
+                                                         rd.number(s["alpha_f"], "solver.alpha_f"),
+                                                         rd.number(s["beta"], "solver.beta"),
+                                                         rd.number(s["gamma"], "solver.gamma"));
+      } else {
+        rs.parameters = AlphaParameters::from_rho_inf(rho);
+      }
+    } else if (scheme == "hht") {
+      if (s["alpha_m"] || s["alpha_f"] || s["beta"] || s["gamma"])
+        rd.fail(s, "solver", "scheme hht takes rho_inf only (alpha_m, alpha_f, beta, gamma follow from it)");
+      rs.parameters = AlphaParameters::hht(rho);
+    } else if (scheme == "newmark") {
+      if (s["alpha_m"] || s["alpha_f"] || s["rho_inf"])
+        rd.fail(s, "solver", "scheme newmark takes beta and gamma only (alpha_m = alpha_f = 0)");
+      rs.parameters = AlphaParameters::newmark(rd.number(s, "beta", "solver", 0.25), rd.number(s, "gamma", "solver", 0.5));
+    } else {
+      rd.fail(s["scheme"], "solver.scheme", "unknown scheme '" + scheme + "' (expected generalized-alpha, hht, newmark)");
+    }
+    rs.parameters.validate();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind("solver", 0) == 0) rd.fail(s, "solver", what);
+    throw;
+  }
+  warnings = rs.parameters.warnings();
+  if (s["h"]) rs.h = rd.positive(s["h"], "solver.h", "step size (s)");
+  if (s["t_end"]) rs.t_end = rd.positive(s["t_end"], "solver.t_end", "final time (s)");
+  if (s["scaling"]) rs.integrator.scaling = rd.flag(s["scaling"], "solver.scaling");
+  if (s["consistent_start"]) rs.integrator.consistent_start = rd.flag(s["consistent_start"], "solver.consistent_start");
+  if (const YAML::Node n = s["newton"]) {
+    rd.keys(n, "solver.newton", {"max_iter", "rtol", "atol", "atol_lambda"});
+    NewtonOptions& o = rs.integrator.newton;
+    if (n["max_iter"]) o.max_iterations = rd.integer(n["max_iter"], "solver.newton.max_iter", 1);
+    if (n["rtol"]) o.rtol = rd.positive(n["rtol"], "solver.newton.rtol", "tolerance");
+    if (n["atol"]) o.atol = rd.non_negative(n["atol"], "solver.newton.atol", "tolerance (m, rad)");
+    if (n["atol_lambda"]) o.atol_lambda = rd.non_negative(n["atol_lambda"], "solver.newton.atol_lambda", "tolerance (N)");
+  }
+}
+
+void read_bodies(Reader& rd, const YAML::Node& list, Model& model, const Eigen::Vector2d& gravity) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "bodies", "expected a list of bodies");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node b = list[i];
+    std::string path = "bodies[" + std::to_string(i) + "]";
+    if (!b.IsMap()) rd.fail(b, path, "expected a map with name, type, ...");
+    const std::string name = rd.text(rd.need(b, "name", path), path + ".name");
+    path = "bodies[" + name + "]";
+    if (name == "ground") rd.fail(b["name"], path + ".name", "'ground' is reserved for the fixed frame");
+    if (model.find_node(name) >= 0) rd.fail(b["name"], path + ".name", "a body named '" + name + "' exists already");
+    const std::string type = rd.text(rd.need(b, "type", path), path + ".type");
+    Node nd;
+    nd.name = name;
+    if (type == "rigid_body") {
+      rd.keys(b, path, {"name", "type", "mass", "inertia", "position", "angle", "velocity", "angular_velocity"});
+      const double m = rd.positive(rd.need(b, "mass", path), path + ".mass", "mass (kg); a zero mass makes the mass matrix singular");
+      const double J = rd.positive(rd.need(b, "inertia", path), path + ".inertia",
+                                   "moment of inertia about the centre of mass (kg m^2); zero makes the mass matrix singular");
+      nd.kind = NodeKind::RigidBody2D;
+      const Eigen::Vector2d p = rd.vec2(rd.need(b, "position", path), path + ".position");
+      const Eigen::Vector2d v = rd.vec2(b, "velocity", path, Eigen::Vector2d::Zero());
+      nd.q0 = Eigen::Vector3d(p.x(), p.y(), rd.number(b, "angle", path, 0.0));
+      nd.v0 = Eigen::Vector3d(v.x(), v.y(), rd.number(b, "angular_velocity", path, 0.0));
+      const int id = model.add_node(nd);
+      model.add_element(std::make_unique<RigidBody2D>(name, id, m, J, gravity));
+    } else if (type == "particle") {
+      rd.keys(b, path, {"name", "type", "mass", "position", "velocity"});
+      const double m = b["mass"] ? rd.non_negative(b["mass"], path + ".mass", "mass (kg)") : 0.0;
+      nd.kind = NodeKind::Particle2D;
+      nd.q0 = rd.vec2(rd.need(b, "position", path), path + ".position");
+      nd.v0 = rd.vec2(b, "velocity", path, Eigen::Vector2d::Zero());
+      const int id = model.add_node(nd);
+      if (m > 0.0) model.add_element(std::make_unique<PointMass>(name, id, model.node(id), m, gravity));
+    } else if (type == "line_particle") {
+      rd.keys(b, path, {"name", "type", "mass", "origin", "direction", "position", "velocity"});
+      const double m = b["mass"] ? rd.non_negative(b["mass"], path + ".mass", "mass (kg)") : 0.0;
+      nd.kind = NodeKind::LineParticle2D;
+      nd.line_origin = rd.vec2(b, "origin", path, Eigen::Vector2d::Zero());
+      const Eigen::Vector2d d = rd.vec2(rd.need(b, "direction", path), path + ".direction");
+      if (d.norm() == 0.0) rd.fail(b["direction"], path + ".direction", "expected a non-zero direction");
+      nd.line_direction = d.normalized();
+      const Eigen::Vector2d p = rd.vec2(rd.need(b, "position", path), path + ".position");
+      const Eigen::Vector2d rel = p - nd.line_origin;
+      const double s = rel.dot(nd.line_direction);
+      if ((rel - s * nd.line_direction).norm() > 1e-9 * std::max(1.0, rel.norm()))
+        rd.fail(b["position"], path + ".position", "the point is not on the line through `origin` along `direction`");
+      nd.q0 = Eigen::VectorXd::Constant(1, s);
+      nd.v0 = Eigen::VectorXd::Constant(1, b["velocity"] ? rd.number(b["velocity"], path + ".velocity") : 0.0);
+      const int id = model.add_node(nd);
+      if (m > 0.0) model.add_element(std::make_unique<PointMass>(name, id, model.node(id), m, gravity));
+    } else {
+      rd.fail(b["type"], path + ".type", "unknown body type '" + type + "' (expected rigid_body, particle, line_particle)");
+    }
+  }
+}
+
+std::vector<int> node_list(int a, int b) {
+  std::vector<int> v;
+  if (a >= 0) v.push_back(a);
+  if (b >= 0) v.push_back(b);
+  return v;
+}
+
+void read_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "joints", "expected a list of joints");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node j = list[i];
+    std::string path = "joints[" + std::to_string(i) + "]";
+    if (!j.IsMap()) rd.fail(j, path, "expected a map with name, type, ...");
+    const std::string name = rd.text(rd.need(j, "name", path), path + ".name");
+    path = "joints[" + name + "]";
+    if (model.find_constraint(name) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + name + "' exists already");
+    const std::string type = rd.text(rd.need(j, "type", path), path + ".type");
+
+    if (type == "fixed_point") {
+      rd.keys(j, path, {"name", "type", "body", "point", "location"});
+      const int b1 = sb.body(j, "body", path, false);
+      const Eigen::Vector2d s1 = rd.vec2(j, "point", path, Eigen::Vector2d::Zero());
+      const Eigen::Vector2d loc = j["location"] ? rd.vec2(j["location"], path + ".location") : sb.initial_position(b1, s1);
+      const auto nodes = node_list(b1, -1);
+      model.add_constraint(std::make_unique<RevoluteJoint2D>(name, nodes, sb.marker(b1, s1, nodes, j, path + ".point"),
+                                                             PlanarMarker::ground(loc)));
+      continue;
+    }
+    if (type != "revolute" && type != "point_on_line" && type != "prismatic")
+      rd.fail(j["type"], path + ".type",
+              "unknown joint type '" + type + "' (expected revolute, fixed_point, point_on_line, prismatic)");
+    const bool line = type != "revolute";
+    std::set<std::string> allowed{"name", "type", "body1", "point1", "body2", "point2", "location"};
+    if (line) allowed.insert("axis");
+    rd.keys(j, path, allowed);
+    const int b1 = sb.body(j, "body1", path, false);
+    const int b2 = j["body2"] ? sb.body(j, "body2", path, true) : -1;
+    if (b1 == b2) rd.fail(j["body2"], path + ".body2", "a joint needs two different bodies");
+    Eigen::Vector2d s1, s2;
+    if (j["location"]) {
+      if (j["point1"] || j["point2"]) rd.fail(j["location"], path + ".location", "give either location or point1/point2");
+      const Eigen::Vector2d loc = rd.vec2(j["location"], path + ".location");
+      s1 = sb.to_local(b1, loc);
+      s2 = sb.to_local(b2, loc);
+    } else {
+      s1 = rd.vec2(j, "point1", path, Eigen::Vector2d::Zero());
+      s2 = rd.vec2(j, "point2", path, Eigen::Vector2d::Zero());
+    }
+    const auto nodes = node_list(b1, b2);
+    const PlanarMarker m1 = sb.marker(b1, s1, nodes, j, path + ".point1");
+    const PlanarMarker m2 = sb.marker(b2, s2, nodes, j, path + ".point2");
+    if (type == "revolute") {
+      model.add_constraint(std::make_unique<RevoluteJoint2D>(name, nodes, m1, m2));
+      continue;
+    }
+    const Eigen::Vector2d axis = rd.vec2(rd.need(j, "axis", path), path + ".axis");
+    if (axis.norm() == 0.0) rd.fail(j["axis"], path + ".axis", "expected a non-zero direction");
+    if (type == "point_on_line") {
+      model.add_constraint(std::make_unique<PointOnLineJoint2D>(name, nodes, m1, m2, axis));
+    } else {
+      if (!model.node(b1).has_angle())
+        rd.fail(j["body1"], path + ".body1", "a prismatic joint fixes the relative rotation: body1 must be a rigid_body");
+      if (b2 >= 0 && !model.node(b2).has_angle())
+        rd.fail(j["body2"], path + ".body2", "a prismatic joint fixes the relative rotation: body2 must be a rigid_body or ground");
+      const double th0 = model.node(b1).q0[2] - (b2 >= 0 ? model.node(b2).q0[2] : 0.0);
+      model.add_constraint(std::make_unique<PrismaticJoint2D>(name, nodes, m1, m2, axis, th0));
+    }
+  }
+}
+
+void read_forces(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "forces", "expected a list of force elements");
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node f = list[i];
+    std::string path = "forces[" + std::to_string(i) + "]";
+    if (!f.IsMap()) rd.fail(f, path, "expected a map with name, type, ...");
+    const std::string name = rd.text(rd.need(f, "name", path), path + ".name");
+    path = "forces[" + name + "]";
+    if (!names.insert(name).second) rd.fail(f["name"], path + ".name", "a force named '" + name + "' exists already");
+    const std::string type = rd.text(rd.need(f, "type", path), path + ".type");
+    if (type == "spring_damper") {
+      rd.keys(f, path, {"name", "type", "body1", "point1", "body2", "point2", "stiffness", "damping", "rest_length", "direction"});
+      const int b1 = sb.body(f, "body1", path, true);
+      const int b2 = f["body2"] ? sb.body(f, "body2", path, true) : -1;
+      if (b1 == b2) rd.fail(f["body2"], path + ".body2", "a spring needs two different bodies (or one body and ground)");
+      const Eigen::Vector2d s1 = rd.vec2(f, "point1", path, Eigen::Vector2d::Zero());
+      const Eigen::Vector2d s2 = rd.vec2(f, "point2", path, Eigen::Vector2d::Zero());
+      const auto nodes = node_list(b1, b2);
+      const PlanarMarker m1 = sb.marker(b1, s1, nodes, f, path + ".point1");
+      const PlanarMarker m2 = sb.marker(b2, s2, nodes, f, path + ".point2");
+      const double k = rd.non_negative(rd.need(f, "stiffness", path), path + ".stiffness", "stiffness (N/m)");
+      const double c = f["damping"] ? rd.non_negative(f["damping"], path + ".damping", "damping (N s/m)") : 0.0;
+      std::optional<Eigen::Vector2d> axis;
+      if (f["direction"]) {
+        const Eigen::Vector2d d = rd.vec2(f["direction"], path + ".direction");
+        if (d.norm() == 0.0) rd.fail(f["direction"], path + ".direction", "expected a non-zero direction");
+        axis = d.normalized();
+      }
+      const Eigen::Vector2d d0 = sb.initial_position(b1, s1) - sb.initial_position(b2, s2);
+      const double initial = axis ? axis->dot(d0) : d0.norm();
+      double l0 = initial;
+      if (f["rest_length"]) {
+        l0 = rd.number(f["rest_length"], path + ".rest_length");
+        if (!axis && l0 < 0.0) rd.fail(f["rest_length"], path + ".rest_length", "expected a non-negative length (m)");
+      }
+      if (!axis && initial < 1e-12)
+        rd.fail(f, path, "the two points coincide at t = 0, so a point-to-point spring has no direction; "
+                         "give `direction` for a spring along a fixed axis");
+      model.add_element(std::make_unique<SpringDamper2D>(name, nodes, m1, m2, k, c, l0, axis));
+    } else if (type == "force") {
+      rd.keys(f, path, {"name", "type", "body", "point", "value"});
+      const int b = sb.body(f, "body", path, false);
+      const Eigen::Vector2d s = rd.vec2(f, "point", path, Eigen::Vector2d::Zero());
+      const YAML::Node v = rd.need(f, "value", path);
+      if (!v.IsSequence() || v.size() != 2) rd.fail(v, path + ".value", "expected [fx, fy], each a number or a time function (N)");
+      model.add_element(std::make_unique<PointForce2D>(name, b, sb.marker(b, s, {b}, f, path + ".point"),
+                                                       rd.function(v[0], path + ".value[0]"),
+                                                       rd.function(v[1], path + ".value[1]")));
+    } else if (type == "torque") {
+      rd.keys(f, path, {"name", "type", "body", "value"});
+      const int b = sb.body(f, "body", path, false);
+      if (!model.node(b).has_angle()) rd.fail(f["body"], path + ".body", "a torque needs a rigid_body (a particle has no rotation)");
+      model.add_element(std::make_unique<Torque2D>(name, b, rd.function(rd.need(f, "value", path), path + ".value")));
+    } else {
+      rd.fail(f["type"], path + ".type", "unknown force type '" + type + "' (expected spring_damper, force, torque)");
+    }
+  }
+}
+
+void read_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "sensors", "expected a list of sensors");
+  std::set<std::string> names{"t"};
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node s = list[i];
+    std::string path = "sensors[" + std::to_string(i) + "]";
+    if (!s.IsMap()) rd.fail(s, path, "expected a map with name, type, ...");
+    Sensor sn;
+    sn.name = rd.text(rd.need(s, "name", path), path + ".name");
+    path = "sensors[" + sn.name + "]";
+    if (!names.insert(sn.name).second) rd.fail(s["name"], path + ".name", "sensor name '" + sn.name + "' is used already (or is 't')");
+    if (sn.name.find_first_of(",\"\n") != std::string::npos) rd.fail(s["name"], path + ".name", "a sensor name may not contain commas or quotes");
+    const std::string type = rd.text(rd.need(s, "type", path), path + ".type");
+    auto rigid = [&](const char* key) {
+      const int b = sb.body(s, key, path, false);
+      if (!model.node(b).has_angle()) rd.fail(s[key], path + "." + key, "expected a rigid_body (it has no angle)");
+      return b;
+    };
+    auto component = [&](std::initializer_list<const char*> allowed) {
+      const std::string c = rd.text(rd.need(s, "component", path), path + ".component");
+      int k = 0;
+      for (const char* a : allowed) {
+        if (c == a) return k;
+        ++k;
+      }
+      std::string list;
+      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      rd.fail(s["component"], path + ".component", "expected one of " + list);
+    };
+    if (type == "body_angle") {
+      rd.keys(s, path, {"name", "type", "body"});
+      sn.kind = Sensor::Kind::BodyAngle;
+      sn.node = rigid("body");
+    } else if (type == "relative_angle") {
+      rd.keys(s, path, {"name", "type", "body", "relative_to"});
+      sn.kind = Sensor::Kind::RelativeAngle;
+      sn.node = rigid("body");
+      sn.node2 = rigid("relative_to");
+    } else if (type == "point_position" || type == "point_displacement" || type == "point_velocity" ||
+               type == "point_acceleration") {
+      rd.keys(s, path, {"name", "type", "body", "point", "component"});
+      sn.kind = type == "point_position" ? Sensor::Kind::PointPosition
+                : type == "point_velocity"   ? Sensor::Kind::PointVelocity
+                : type == "point_acceleration" ? Sensor::Kind::PointAcceleration
+                                               : Sensor::Kind::PointDisplacement;
+      sn.node = sb.body(s, "body", path, false);
+      sn.local = rd.vec2(s, "point", path, Eigen::Vector2d::Zero());
+      sb.marker(sn.node, sn.local, {sn.node}, s, path + ".point");
+      sn.component = component({"x", "y"});
+      sn.initial = sb.initial_position(sn.node, sn.local);
+    } else if (type == "joint_reaction") {
+      rd.keys(s, path, {"name", "type", "joint", "component"});
+      sn.kind = Sensor::Kind::JointReaction;
+      const std::string jn = rd.text(rd.need(s, "joint", path), path + ".joint");
+      sn.constraint = model.find_constraint(jn);
+      if (sn.constraint < 0) rd.fail(s["joint"], path + ".joint", "no joint named '" + jn + "'");
+      sn.component = component({"fx", "fy", "mz"});
+    } else {
+      rd.fail(s["type"], path + ".type",
+              "unknown sensor type '" + type +
+                  "' (expected body_angle, relative_angle, point_position, point_displacement, point_velocity, "
+                  "point_acceleration, joint_reaction)");
+    }
+    model.add_sensor(sn);
+  }
+}
+
+void apply_override(YAML::Node root, const std::string& assignment) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set " + assignment + ": expected key.path=value (e.g. solver.h=1e-3)");
+  const std::string key = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  YAML::Node cur = root;
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    if (cur.IsSequence()) {
+      const size_t idx = std::stoul(parts[i]);
+      if (idx >= cur.size()) throw InputError("--set " + key + ": index " + parts[i] + " is out of range");
+      cur.reset(cur[idx]);
+      continue;
+    }
+    if (cur.IsScalar()) throw InputError("--set " + key + ": '" + parts[i] + "' is inside a value, not a map");
+    if (!cur[parts[i]]) cur[parts[i]] = YAML::Node(YAML::NodeType::Map);
+    cur.reset(cur[parts[i]]);
+  }
+  if (cur.IsScalar()) throw InputError("--set " + key + ": the parent is a value, not a map");
+  cur[parts.back()] = YAML::Load(value);
+}
+
+Scene build(const YAML::Node& root, const std::string& label) {
+  Reader rd(label);
+  Scene scene;
+  scene.file = label;
+  if (!root.IsMap()) rd.fail(root, "(top level)", "expected a map of sections (solver, bodies, joints, ...)");
+  rd.keys(root, "(top level)", {"name", "description", "parameters", "gravity", "solver", "output", "bodies",
+                                "joints", "forces", "sensors"});
+  rd.read_parameters(root["parameters"]);
+  scene.name = root["name"] ? rd.text(root["name"], "name")
+                            : std::filesystem::path(label).stem().string();
+  if (scene.name.empty() || scene.name.find_first_of("/\\ ") != std::string::npos)
+    rd.fail(root["name"], "name", "expected a plain file name (no spaces or slashes)");
+  if (root["description"]) scene.description = rd.text(root["description"], "description");
+  read_solver(rd, root["solver"], scene.settings, scene.warnings);
+  if (const YAML::Node o = root["output"]) {
+    rd.keys(o, "output", {"every", "hdf5"});
+    if (o["every"]) scene.settings.output_every = rd.integer(o["every"], "output.every", 1);
+    if (o["hdf5"]) scene.settings.hdf5 = rd.flag(o["hdf5"], "output.hdf5");
+  }
+  const Eigen::Vector2d gravity = rd.vec2(root, "gravity", "", Eigen::Vector2d::Zero());
+  scene.model = std::make_unique<Model>();
+  scene.model->name = scene.name;
+  read_bodies(rd, root["bodies"], *scene.model, gravity);
+  if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies");
+  SceneBuilder sb(rd, *scene.model);
+  read_joints(rd, sb, root["joints"], *scene.model);
+  read_forces(rd, sb, root["forces"], *scene.model);
+  read_sensors(rd, sb, root["sensors"], *scene.model);
+  return scene;
+}
+
+Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
+           const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = parse();
+  } catch (const YAML::Exception& e) {
+    throw InputError(label + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  for (const auto& o : overrides) {
+    try {
+      apply_override(root, o);
+    } catch (const YAML::Exception& e) {
+      throw InputError("--set " + o + ": " + e.msg);
+    } catch (const std::logic_error&) {
+      throw InputError("--set " + o + ": expected a list index");
+    }
+  }
+  try {
+    return build(root, label);
+  } catch (const YAML::Exception& e) {
+    throw InputError(label + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+}
+
+}  // namespace
+
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the scene file");
+  return load([&] { return YAML::LoadFile(path); }, path, overrides);
+}
+
+Scene read_scene_text(const std::string& yaml, const std::string& label, const std::vector<std::string>& overrides) {
+  return load([&] { return YAML::Load(yaml); }, label, overrides);
+}
+
+}  // namespace alphaflex
