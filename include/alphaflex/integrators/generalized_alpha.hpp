@@ -11,7 +11,9 @@
 // Newton stopping: on the size of the last correction, ‖Δq‖∞ ≤ atol + rtol‖q‖∞ and
 // ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞. A test on (scaled) residuals alone would stop earlier and earlier
 // as h → 0 (the dynamic residual is multiplied by βh²), and the errors left in Φ(q_n) are
-// amplified by 1/h² in λ (eq. 34), so the order would be lost at small h.
+// amplified by 1/h² in λ (eq. 34), so the order would be lost at small h. The λ test is waived
+// once Δq is at round-off level (≤ 10⁴ ε ‖q‖): λ then carries the round-off of q times
+// β' ~ 1/(βh²), which no further iteration removes.
 #include <string>
 #include <vector>
 

@@ -1,0 +1,77 @@
+#pragma once
+// Helpers shared by the scene-level tests: run a scene in-process, read reference CSVs, fit slopes.
+#include <petscsys.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "alphaflex/app/simulation.hpp"
+#include "alphaflex/io/scene.hpp"
+
+namespace alphaflex::testing {
+
+inline std::string source_path(const std::string& rel) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/" + rel; }
+
+/// Runs inputs/<scene>.yaml with --set style overrides, no files written.
+inline RunSummary run_scene(const std::string& scene, const std::vector<std::string>& overrides) {
+  Scene s = read_scene(source_path("inputs/" + scene + ".yaml"), overrides);
+  RunOptions opt;
+  opt.write_results = false;
+  opt.verbose = false;
+  return run_simulation(s, opt, PETSC_COMM_WORLD);
+}
+
+/// Value of sensor `name` at the final time.
+inline double final_value(const Scene& scene, const RunSummary& r, const std::string& name) {
+  const auto& sensors = scene.model->sensors();
+  for (size_t i = 0; i < sensors.size(); ++i)
+    if (sensors[i].name == name) return r.final_sensors[i];
+  throw std::runtime_error("no sensor " + name);
+}
+
+/// A CSV with a header row: column name → values.
+inline std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream hs(line);
+  for (std::string c; std::getline(hs, c, ',');) names.push_back(c);
+  std::map<std::string, std::vector<double>> cols;
+  while (std::getline(in, line)) {
+    std::stringstream ls(line);
+    size_t k = 0;
+    for (std::string c; std::getline(ls, c, ',') && k < names.size(); ++k) cols[names[k]].push_back(std::stod(c));
+  }
+  return cols;
+}
+
+/// Value of column `name` at time t (rows must contain t up to round-off).
+inline double at_time(const std::map<std::string, std::vector<double>>& csv, const std::string& name, double t) {
+  const auto& tt = csv.at("t");
+  for (size_t i = 0; i < tt.size(); ++i)
+    if (std::fabs(tt[i] - t) < 1e-9) return csv.at(name)[i];
+  throw std::runtime_error("time not in reference");
+}
+
+/// Least-squares slope of log(err) against log(h).
+inline double fitted_slope(const std::vector<double>& h, const std::vector<double>& err) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(h.size());
+  for (size_t i = 0; i < h.size(); ++i) {
+    const double x = std::log(h[i]), y = std::log(err[i]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace alphaflex::testing
