@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# One-command set-up for a fresh Debian 12 machine (run as root, from the repository root):
+#   bash scripts/setup.sh run    install dependencies, build, run the default scene
+#   bash scripts/setup.sh test   install dependencies, build, run the whole test suite (ctest)
+set -euo pipefail
+mode=${1:-run}
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+
+bash scripts/install-deps.sh
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+case "$mode" in
+  run)
+    cmake --build build -j"$jobs" --target alphaflex_exe
+    scene=${2:-inputs/andrews.yaml}
+    ./build/alphaflex run "$scene" -o out
+    echo "Results are in $root/out: open $root/out/$(basename "$scene" .yaml).xdmf in ParaView (by its absolute path)."
+    ;;
+  test)
+    cmake --build build -j"$jobs"
+    cd build && ctest -j"$jobs" --output-on-failure --timeout 900
+    ;;
+  *)
+    echo "usage: bash scripts/setup.sh run [SCENE.yaml] | test" >&2
+    exit 2
+    ;;
+esac
