@@ -84,8 +84,11 @@ def loglog_study(ax, hs, errs, label, **kw):
 
 
 def order2_guide(ax, hs, e0):
+    """Slope-2 guide line and tick labels at the step sizes of the study."""
     hs = np.asarray(hs)
     ax.loglog(hs, e0 * (hs / hs[0]) ** 2, "k:", lw=1, label="slope 2")
+    ax.set_xticks(hs, [f"{h:.4g}" for h in hs])
+    ax.set_xticks([], minor=True)
 
 
 def save(fig, outdir, name):
@@ -129,13 +132,13 @@ def fig3_slider_crank_convergence(outdir, hs):
         e_x4 = [rel_err(d, r, T, "x4") for d, _ in runs]
         e_la = [rel_err(d, r, T, "pivot_fx") for d, _ in runs]
         kw = dict(ls=style, alpha=1.0 if rho == 0.7 else 0.55)
-        s1 = loglog_study(ax, hs, e_th, f"θ1, ρ∞={rho}", color="C0", **kw)
-        s2 = loglog_study(ax, hs, e_la, f"λ: pivot_fx, ρ∞={rho}", color="C3", **kw)
+        s1 = loglog_study(ax, hs, e_th, f"θ1, ρ∞={rho:g}", color="C0", **kw)
+        s2 = loglog_study(ax, hs, e_la, f"λ: pivot_fx, ρ∞={rho:g}", color="C3", **kw)
         result["slopes"][rho] = (s1, (slope(hs, e_x4), slope(hs[-3:], e_x4[-3:])), s2)
         if rho == 0.7:
             result["rows"] = [(h, a, b, c, st["newton_mean"], st["newton_max"], st["wall_us_per_step"])
                               for h, a, b, c, (_, st) in zip(hs, e_th, e_x4, e_la, runs)]
-            order2_guide(ax, hs, 0.5 * e_th[0])
+    order2_guide(ax, hs, 0.5 * result["rows"][0][1])
     ax.set(xlabel="step size h (s)", ylabel="relative error at t = 1 s",
            title="Slider-crank convergence (Arnold & Brüls 2007, Fig. 3)\n" + REF_LABEL)
     ax.title.set_fontsize(9)
@@ -163,13 +166,14 @@ def fig6_andrews(outdir):
     ax[0].plot(d["t"], 1e3 * d["Py"], label="y_P")
     ax[0].plot(r["t"], 1e3 * RR * np.cos(r["beta"]), "k--", lw=0.8, label="reference r·(cos β, sin β)")
     ax[0].plot(r["t"], 1e3 * RR * np.sin(r["beta"]), "k--", lw=0.8)
-    ax[0].set(xlabel="t (s)", ylabel="position of P (mm)", title="(x, y)-position of point P")
+    ax[0].set(xlabel="t (s)", ylabel="position of P (mm)", title="(x, y)-position of point P", ylim=(-8, 11))
     ax[1].plot(d["t"], d["beta"], label="alphaflex")
     ax[1].plot(r["t"], r["beta"], "k--", lw=0.8, label="reference (DOP853)")
     ax[1].set(xlabel="t (s)", ylabel="β (rad)", title="angle β")
+    ax[0].legend(fontsize=8, loc="upper center", ncol=3)
+    ax[1].legend(fontsize=8)
     for a in ax:
         a.grid(alpha=0.3)
-        a.legend(fontsize=8)
     fig.suptitle("Andrews' mechanism, h = 3e-4 s, ρ∞ = 0.7 (Arnold & Brüls 2007, Fig. 6)", fontsize=11)
     save(fig, outdir, "fig6_andrews.png")
 
@@ -225,6 +229,7 @@ def fig8_andrews_rho1(outdir):
         d, st = run("andrews", 3e-4, rho)
         plot_acc_and_reactions(ax[0, j], ax[1, j], d)
         ax[0, j].set_title(f"ρ∞ = {rho:g}" + (" (undamped)" if rho == 1 else ""))
+        ax[0, j].set_xlabel("")
         osc[rho] = oscillation_numbers(d, r)
         osc[rho]["newton_mean"] = st["newton_mean"]
     fig.suptitle("Andrews' mechanism, h = 3e-4 s: numerical damping vs none "
