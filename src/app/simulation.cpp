@@ -108,9 +108,11 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   }
   if (writer) {
     writer->finish();
-    sum.h5 = writer->h5_path();
-    sum.xdmf = writer->xdmf_path();
     sum.csv = writer->csv_path();
+    if (rs.hdf5) {
+      sum.h5 = writer->h5_path();
+      sum.xdmf = writer->xdmf_path();
+    }
   }
   sum.final_state = s;
   sum.final_sensors = sensor_values(model, s);
@@ -142,8 +144,8 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
      << "    solve             " << t.solve << " s (" << std::setprecision(1) << pct(t.solve) << " %)\n" << std::setprecision(3)
      << "    output            " << t.output << " s (" << std::setprecision(1) << pct(t.output) << " %)\n" << std::setprecision(3)
      << "    other             " << other << " s (" << std::setprecision(1) << pct(other) << " %)\n";
-  if (!s.xdmf.empty())
-    os << "results\n  sensors  " << s.csv << "\n  fields   " << s.h5 << "\n  ParaView paraview " << s.xdmf << "\n";
+  if (!s.csv.empty()) os << "results\n  sensors  " << s.csv << "\n";
+  if (!s.xdmf.empty()) os << "  fields   " << s.h5 << "\n  ParaView paraview " << s.xdmf << "\n";
   return os.str();
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/core/error.hpp"
 
 namespace alphaflex {
@@ -65,7 +66,13 @@ ModelVector GeneralizedAlpha::solve_linear(const MechanicalState& s, const Assem
   PetscLogEventEnd(ev_factor, 0, 0, 0, 0);
   double t2 = MPI_Wtime();
   times_.factorization += t2 - t1;
-  if (!solver_.failure().empty()) throw SolverError(solver_.failure());
+  if (!solver_.failure().empty()) {
+    const std::string why = diagnose_singular_system(sys_.model(), s);
+    std::ostringstream os;
+    os << "the iteration matrix could not be factored at t = " << s.t << " s: " << solver_.failure();
+    if (!why.empty()) os << "\n  " << why;
+    throw SolverError(os.str());
+  }
   PetscLogEventBegin(ev_solve, 0, 0, 0, 0);
   check_petsc(solver_.solve(sys_.residual(), sys_.solution()), "solve");
   PetscLogEventEnd(ev_solve, 0, 0, 0, 0);
@@ -102,6 +109,9 @@ std::string GeneralizedAlpha::describe_largest(const ModelVector& r) const {
 double GeneralizedAlpha::initialize(MechanicalState& s) {
   const Model& m = sys_.model();
   const Eigen::VectorXd q_in = s.q;
+  // Redundant joints make S_t singular whatever h is: name them before MUMPS fails on them.
+  if (!find_redundant_constraints(m, s).empty())
+    throw InputError("the joints over-constrain the model at t = 0:\n  " + diagnose_singular_system(m, s));
   AssemblyCoefficients proj;
   proj.identity = 1.0;
   if (opt_.consistent_start && m.num_multipliers() > 0) {

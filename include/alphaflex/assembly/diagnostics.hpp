@@ -1,0 +1,29 @@
+#pragma once
+// Why is the iteration matrix singular? Two causes a user can act on, each named by joint or node
+// instead of a MUMPS error code:
+//  - redundant constraints: Φ_q has dependent rows (a joint repeats what others impose);
+//  - unconstrained massless motion: a direction in which neither the mass matrix nor any joint
+//    acts (rank [M; Φ_q] < n), e.g. a massless point attached by too few joints.
+// Dense analysis (Eigen) on every rank alike; meant for models up to a few thousand unknowns.
+#include <string>
+#include <vector>
+
+#include "alphaflex/model/model.hpp"
+
+namespace alphaflex {
+
+struct RedundantEquation {
+  int constraint = -1;          ///< joint index
+  int equation = -1;            ///< 0-based equation of that joint
+  std::vector<int> depends_on;  ///< joints whose equations it is a combination of
+};
+
+/// Equations of Φ_q(q, t) that are linear combinations of earlier ones (relative tolerance `tol`).
+std::vector<RedundantEquation> find_redundant_constraints(const Model& model, const MechanicalState& s,
+                                                          double tol = 1e-10);
+
+/// Human-readable diagnosis of a singular saddle-point matrix at state s; empty if none found or
+/// if the model is too large for the dense check (then says so).
+std::string diagnose_singular_system(const Model& model, const MechanicalState& s);
+
+}  // namespace alphaflex

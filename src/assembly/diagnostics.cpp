@@ -1,0 +1,129 @@
+#include "alphaflex/assembly/diagnostics.hpp"
+
+#include <Eigen/QR>
+#include <set>
+#include <sstream>
+
+namespace alphaflex {
+namespace {
+
+constexpr int kDenseLimit = 4000;  // unknowns; beyond this the O(n³) check is not attempted
+
+Eigen::MatrixXd dense_constraint_jacobian(const Model& m, const MechanicalState& s, std::vector<int>& row_joint,
+                                          std::vector<int>& row_eq) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m.num_multipliers(), m.num_dofs());
+  for (size_t c = 0; c < m.constraints().size(); ++c) {
+    const Constraint& con = *m.constraints()[c];
+    const auto idx = m.dofs_of(con.nodes());
+    Eigen::VectorXd phi;
+    Eigen::MatrixXd phi_q;
+    con.evaluate(gather(s.q, idx), s.t, phi, phi_q);
+    const int first = m.first_multiplier(static_cast<int>(c));
+    for (int k = 0; k < con.size(); ++k) {
+      for (size_t j = 0; j < idx.size(); ++j) A(first + k, idx[j]) = phi_q(k, static_cast<Eigen::Index>(j));
+      row_joint.push_back(static_cast<int>(c));
+      row_eq.push_back(k);
+    }
+  }
+  return A;
+}
+
+const char* coordinate_name(NodeKind kind, int k) {
+  static const char* rigid[] = {"x", "y", "theta"};
+  if (kind == NodeKind::LineParticle2D) return "s";
+  return rigid[k];
+}
+
+}  // namespace
+
+std::vector<RedundantEquation> find_redundant_constraints(const Model& m, const MechanicalState& s, double tol) {
+  std::vector<RedundantEquation> out;
+  if (m.num_multipliers() == 0 || m.num_dofs() > kDenseLimit) return out;
+  std::vector<int> row_joint, row_eq;
+  const Eigen::MatrixXd A = dense_constraint_jacobian(m, s, row_joint, row_eq);
+  // Greedy in scene order: an equation is redundant if it lies (to tol) in the span of the
+  // independent equations before it; its coefficients name the joints it depends on.
+  std::vector<int> kept;
+  for (Eigen::Index r = 0; r < A.rows(); ++r) {
+    const Eigen::RowVectorXd a = A.row(r);
+    const double norm = a.norm();
+    bool redundant = norm == 0.0;
+    Eigen::VectorXd coef;
+    if (!redundant && !kept.empty()) {
+      Eigen::MatrixXd B(A.cols(), static_cast<Eigen::Index>(kept.size()));
+      for (size_t k = 0; k < kept.size(); ++k) B.col(static_cast<Eigen::Index>(k)) = A.row(kept[k]).transpose();
+      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(B);
+      coef = qr.solve(a.transpose());
+      redundant = (B * coef - a.transpose()).norm() <= tol * norm;
+    }
+    if (!redundant) {
+      kept.push_back(static_cast<int>(r));
+      continue;
+    }
+    RedundantEquation e{row_joint[static_cast<size_t>(r)], row_eq[static_cast<size_t>(r)], {}};
+    std::set<int> deps;
+    for (Eigen::Index k = 0; k < coef.size(); ++k)
+      if (std::fabs(coef[k]) > 1e-8) deps.insert(row_joint[static_cast<size_t>(kept[static_cast<size_t>(k)])]);
+    e.depends_on.assign(deps.begin(), deps.end());
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
+  if (m.num_dofs() > kDenseLimit)
+    return "(the dense singularity diagnosis is skipped above " + std::to_string(kDenseLimit) + " coordinates)";
+  std::ostringstream os;
+  const auto red = find_redundant_constraints(m, s);
+  for (const auto& e : red) {
+    const Constraint& c = *m.constraints()[static_cast<size_t>(e.constraint)];
+    os << "redundant constraint: joint '" << c.name() << "' (" << c.type() << ") equation " << (e.equation + 1)
+       << " is a combination of equations of";
+    if (e.depends_on.empty()) os << " nothing (it is void at this configuration)";
+    for (size_t k = 0; k < e.depends_on.size(); ++k)
+      os << (k ? ", " : " ") << "'" << m.constraints()[static_cast<size_t>(e.depends_on[k])]->name() << "'";
+    os << "; remove it or use a joint that imposes fewer equations.\n";
+  }
+  // Unconstrained massless directions: null space of [M; Φ_q].
+  std::vector<int> rj, re;
+  const Eigen::MatrixXd A = dense_constraint_jacobian(m, s, rj, re);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m.num_dofs(), m.num_dofs());
+  LocalState ls;
+  LocalResidual lr;
+  for (const auto& e : m.elements()) {
+    const auto idx = m.dofs_of(e->nodes());
+    ls.q = gather(s.q, idx);
+    ls.v = gather(s.v, idx);
+    ls.qdd = gather(s.qdd, idx);
+    ls.t = s.t;
+    lr.reset(static_cast<int>(idx.size()), true);
+    e->evaluate(ls, lr, true);
+    for (size_t i = 0; i < idx.size(); ++i)
+      for (size_t j = 0; j < idx.size(); ++j)
+        M(idx[i], idx[j]) += lr.M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+  }
+  Eigen::MatrixXd stacked(M.rows() + A.rows(), m.num_dofs());
+  stacked << M, A;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(stacked);
+  lu.setThreshold(1e-12);
+  const Eigen::MatrixXd kernel = lu.dimensionOfKernel() > 0 ? Eigen::MatrixXd(lu.kernel()) : Eigen::MatrixXd();
+  for (Eigen::Index k = 0; k < kernel.cols(); ++k) {
+    os << "free massless motion: no mass and no joint acts on";
+    const Eigen::VectorXd v = kernel.col(k) / kernel.col(k).cwiseAbs().maxCoeff();
+    bool first = true;
+    for (const Node& n : m.nodes())
+      for (int d = 0; d < n.ndof; ++d)
+        if (std::fabs(v[n.first_dof + d]) > 1e-8) {
+          os << (first ? " " : ", ") << "node '" << n.name << "' (" << coordinate_name(n.kind, d) << ")";
+          first = false;
+        }
+    os << "; give it a mass or attach it by more joints.\n";
+  }
+  // One finding per line, indented under the message that carries them.
+  std::string r = os.str();
+  if (!r.empty() && r.back() == '\n') r.pop_back();
+  for (size_t p = r.find('\n'); p != std::string::npos; p = r.find('\n', p + 3)) r.replace(p, 1, "\n  ");
+  return r;
+}
+
+}  // namespace alphaflex
