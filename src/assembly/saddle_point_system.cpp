@@ -100,31 +100,21 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
     const auto& idx = elem_dofs_[e];
     const auto& g = elem_rows_[e];
     const int n = static_cast<int>(idx.size());
-    if (matrix) {
-      // The pattern must hold every entry from the first assembly on, even with zero values.
-      RowMajor block = RowMajor::Zero(n, n);
-      if (elements_in) {
-        ls.q = gather(s.q, idx);
-        ls.v = gather(s.v, idx);
-        ls.qdd = gather(s.qdd, idx);
-        ls.t = s.t;
-        lr.reset(n, true);
-        model_.elements()[e]->evaluate(ls, lr, true);
-        block = sc * (c.mass * lr.M + c.damping * lr.C + c.stiffness * lr.K);
-      }
-      PetscCall(add_block(S_, g, g, block));
-    }
     if (elements_in) {
-      if (!matrix) {
-        ls.q = gather(s.q, idx);
-        ls.v = gather(s.v, idx);
-        ls.qdd = gather(s.qdd, idx);
-        ls.t = s.t;
-        lr.reset(n, false);
-        model_.elements()[e]->evaluate(ls, lr, false);
-      }
+      ls.q = gather(s.q, idx);
+      ls.v = gather(s.v, idx);
+      ls.qdd = gather(s.qdd, idx);
+      ls.t = s.t;
+      lr.reset(n, matrix);
+      model_.elements()[e]->evaluate(ls, lr, matrix);
       const Eigen::VectorXd re = sc * lr.r;
       PetscCall(VecSetValues(r_, n, g.data(), re.data(), ADD_VALUES));
+    }
+    if (matrix) {
+      // The pattern must hold every entry from the first assembly on, even with zero values.
+      const RowMajor block = elements_in ? RowMajor(sc * (c.mass * lr.M + c.damping * lr.C + c.stiffness * lr.K))
+                                         : RowMajor::Zero(n, n);
+      PetscCall(add_block(S_, g, g, block));
     }
   }
 
