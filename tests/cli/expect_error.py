@@ -9,8 +9,8 @@ match the forbidden pattern (by default: signs of a crash, an abort or a PETSc s
 bad input must never produce). Otherwise prints what was expected, what happened, and the full
 stderr, and exits 1.
 
-The command runs in its own process group; on timeout the whole group (e.g. mpiexec and its
-ranks) is killed, so a hang is reported as a failure instead of blocking the test run.
+The command runs in its own process group; on timeout the group gets SIGTERM (mpiexec passes it on
+to its ranks), then SIGKILL, so a hang is reported as a failure instead of blocking the test run.
 """
 import argparse
 import os
@@ -52,8 +52,14 @@ def main():
     try:
         out, err = p.communicate(timeout=a.timeout)
     except subprocess.TimeoutExpired:
-        os.killpg(p.pid, signal.SIGKILL)
-        out, err = p.communicate()
+        # SIGTERM first: mpiexec forwards it to its ranks (which run in process groups of their
+        # own) and cleans up; SIGKILL the group if that does not end it.
+        os.killpg(p.pid, signal.SIGTERM)
+        try:
+            out, err = p.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            out, err = p.communicate()
         print(f"FAIL: {shown}\n  did not finish within {a.timeout:g} s (hang?); killed.")
         print("--- stderr ---\n" + err.decode(errors="replace") + "--- stdout ---\n" + out.decode(errors="replace"))
         return 1
