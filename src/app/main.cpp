@@ -48,9 +48,12 @@ CommandLine parse(int argc, char** argv) {
     } else if (a.rfind("--set=", 0) == 0) {
       cl.overrides.push_back(a.substr(6));
     } else if (!a.empty() && a[0] == '-') {
-      // A PETSc option, with its value if the next word is not an option itself.
+      // A PETSc option, with its value if the next word is not an option itself (nor a scene).
       cl.petsc_argv.push_back(argv[i]);
-      if (i + 1 < argc && argv[i + 1][0] != '-') cl.petsc_argv.push_back(argv[++i]);
+      const auto is_scene = [](const std::string& w) {
+        return w.size() > 5 && (w.compare(w.size() - 5, 5, ".yaml") == 0 || w.compare(w.size() - 4, 4, ".yml") == 0);
+      };
+      if (i + 1 < argc && argv[i + 1][0] != '-' && !is_scene(argv[i + 1])) cl.petsc_argv.push_back(argv[++i]);
     } else if (cl.command.empty()) {
       cl.command = a;
     } else if (cl.scene.empty()) {

@@ -58,7 +58,11 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   if (!all_ok) throw InputError(err.empty() ? "cannot create the output files (see rank 0)" : err);
 
   MechanicalState s = model.initial_state();
-  sum.projection = integrator.initialize(s);
+  try {
+    sum.projection = integrator.initialize(s);
+  } catch (const InputError& e) {
+    throw InputError(scene.file + ": " + e.what());  // the model as given cannot start
+  }
 
   const double h = rs.h;
   const double ratio = rs.t_end / h;

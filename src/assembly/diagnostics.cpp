@@ -114,7 +114,7 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
     for (const Node& n : m.nodes())
       for (int d = 0; d < n.ndof; ++d)
         if (std::fabs(v[n.first_dof + d]) > 1e-8) {
-          os << (first ? " " : ", ") << "node '" << n.name << "' (" << coordinate_name(n.kind, d) << ")";
+          os << (first ? " " : ", ") << "body '" << n.name << "' (" << coordinate_name(n.kind, d) << ")";
           first = false;
         }
     os << "; give it a mass or attach it by more joints.\n";

@@ -1,6 +1,9 @@
 #include "alphaflex/assembly/saddle_point_system.hpp"
 
 #include <set>
+#include <string>
+
+#include "alphaflex/core/error.hpp"
 
 namespace alphaflex {
 namespace {
@@ -89,10 +92,47 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   PetscFunctionBeginUser;
   PetscCall(VecSet(r_, 0.0));
   if (matrix) PetscCall(MatZeroEntries(S_));
+
+  // An element or joint may throw on the rank that owns it (e.g. a spring of zero length). The
+  // other ranks would then wait in the assembly below: agree on failure first, then all throw.
+  std::string local_error;
+  try {
+    PetscCall(add_local_contributions(s, c, rows, matrix));
+  } catch (const std::exception& e) {
+    local_error = e.what();
+  }
+  PetscCall(raise_if_any_rank_failed(local_error));
+  if (matrix) {
+    PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(VecAssemblyBegin(r_));
+  PetscCall(VecAssemblyEnd(r_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& local_error) {
+  PetscFunctionBeginUser;
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm_, &rank);
+  MPI_Comm_size(comm_, &size);
+  int mine = local_error.empty() ? size : rank, first = size;
+  PetscCallMPI(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm_));
+  if (first == size) PetscFunctionReturn(0);
+  int len = static_cast<int>(local_error.size());
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, first, comm_));
+  std::string msg = local_error;
+  msg.resize(static_cast<size_t>(len));
+  PetscCallMPI(MPI_Bcast(msg.data(), len, MPI_CHAR, first, comm_));
+  throw SolverError(msg);
+}
+
+PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState& s, const AssemblyCoefficients& c,
+                                                          ConstraintRows rows, bool matrix) {
+  PetscFunctionBeginUser;
   const int rank = map_.rank();
   const bool elements_in = rows == ConstraintRows::Acceleration || rows == ConstraintRows::Dynamic;
   const double sc = c.row_scale;
-
   LocalState ls;
   LocalResidual lr;
   for (size_t e = 0; e < model_.elements().size(); ++e) {
@@ -172,11 +212,7 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
         PetscCall(MatSetValue(S_, g, g, sc * c.identity, ADD_VALUES));
       }
     }
-    PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
   }
-  PetscCall(VecAssemblyBegin(r_));
-  PetscCall(VecAssemblyEnd(r_));
   PetscFunctionReturn(0);
 }
 

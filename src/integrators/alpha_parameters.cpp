@@ -50,12 +50,15 @@ AlphaParameters AlphaParameters::explicit_values(double am, double af, double be
 }
 
 void AlphaParameters::validate() const {
-  std::ostringstream os;
-  if (std::fabs(1.0 - alpha_m) < 1e-12) os << "α_m = 1 makes the recurrence (3) for a undefined; ";
-  if (std::fabs(1.0 - alpha_f) < 1e-12) os << "α_f = 1 makes β' (eq. 6) undefined; ";
-  if (!(beta > 0.0)) os << "β must be positive (β' and γ' of eq. 6 divide by it); ";
-  if (!(gamma >= 0.0)) os << "γ must be non-negative; ";
-  if (!os.str().empty()) throw InputError("solver: invalid generalized-α parameters: " + os.str());
+  std::vector<std::string> why;
+  if (std::fabs(1.0 - alpha_m) < 1e-12) why.push_back("alpha_m = 1 makes the recurrence (3) for a undefined");
+  if (std::fabs(1.0 - alpha_f) < 1e-12) why.push_back("alpha_f = 1 makes beta' (eq. 6) undefined");
+  if (!(beta > 0.0)) why.push_back("beta must be positive (beta' and gamma' of eq. 6 divide by it)");
+  if (!(gamma >= 0.0)) why.push_back("gamma must be non-negative");
+  if (why.empty()) return;
+  std::string msg = "invalid generalized-alpha parameters: ";
+  for (size_t i = 0; i < why.size(); ++i) msg += (i ? "; " : "") + why[i];
+  throw InputError(msg);
 }
 
 std::vector<std::string> AlphaParameters::warnings() const {

@@ -109,9 +109,24 @@ std::string GeneralizedAlpha::describe_largest(const ModelVector& r) const {
 double GeneralizedAlpha::initialize(MechanicalState& s) {
   const Model& m = sys_.model();
   const Eigen::VectorXd q_in = s.q;
-  // Redundant joints make S_t singular whatever h is: name them before MUMPS fails on them.
-  if (!find_redundant_constraints(m, s).empty())
-    throw InputError("the joints over-constrain the model at t = 0:\n  " + diagnose_singular_system(m, s));
+  // A singular model (redundant joints, massless coordinates nothing acts on) makes every S_t
+  // singular whatever h is: name the joints and bodies instead of failing in MUMPS later.
+  const std::string why = diagnose_singular_system(m, s);
+  if (!why.empty()) {
+    std::ostringstream os;
+    os << "the model is singular at t = 0:\n  " << why;
+    Eigen::VectorXd phi;
+    Eigen::MatrixXd phi_q;
+    double viol = 0.0;
+    for (const auto& c : m.constraints()) {
+      c->evaluate(gather(s.q, m.dofs_of(c->nodes())), s.t, phi, phi_q);
+      viol = std::max(viol, inf_norm(phi));
+    }
+    if (viol > 1e-9 * std::max(1.0, inf_norm(s.q)))
+      os << "\n  Note: the initial positions also violate the joints (by up to " << viol
+         << "); a singular configuration such as links in a straight line can look redundant. Check the positions.";
+    throw InputError(os.str());
+  }
   AssemblyCoefficients proj;
   proj.identity = 1.0;
   if (opt_.consistent_start && m.num_multipliers() > 0) {
@@ -127,10 +142,14 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
     check_petsc(sys_.assemble(s, proj, ConstraintRows::Position, false), "assembly");
     check_petsc(sys_.to_model(sys_.residual(), r), "residual gather");
     viol = inf_norm(r.multipliers);
-    if (viol > 1e-9 * std::max(1.0, inf_norm(s.q)))
-      throw InputError("the initial positions cannot be brought onto the joints' constraints (remaining "
-                       "violation " + std::to_string(viol) + "); " + describe_largest(r) +
-                       ". Check the bodies' positions and the joints' points.");
+    if (viol > 1e-9 * std::max(1.0, inf_norm(s.q))) {
+      ModelVector only_constraints{Eigen::VectorXd(), r.multipliers};
+      std::ostringstream os;
+      os << "the initial positions cannot be brought onto the joints (remaining violation " << viol << " after "
+         << "the consistent-start projection): " << describe_largest(only_constraints).substr(2)
+         << ". Check the bodies' positions and the joints' points.";
+      throw InputError(os.str());
+    }
     // Velocities: minimum-norm correction onto Φ_q q̇ + Φ_t = 0 (linear: one solve).
     const ModelVector x = solve_linear(s, proj, ConstraintRows::Velocity, nullptr);
     s.v -= x.dofs;

@@ -25,29 +25,50 @@ class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
+  /// Remembers the nodes a --set put in the tree, so that errors in them point at the option.
+  void add_override(const YAML::Node& value, const std::string& assignment) {
+    overrides_.emplace_back(value, assignment);
+    if (value.IsSequence() || value.IsMap())
+      for (const auto& child : value) add_override(value.IsMap() ? child.second : child, assignment);
+  }
+
   [[noreturn]] void fail(const YAML::Node& at, const std::string& key, const std::string& what) const {
     std::ostringstream os;
-    os << file_;
-    if (at.IsDefined() && at.Mark().line >= 0) os << ":" << (at.Mark().line + 1);
+    const std::string* from_set = nullptr;
+    for (const auto& [node, text] : overrides_)
+      if (at.IsDefined() && node.is(at)) from_set = &text;
+    if (from_set) {
+      os << file_ << ": --set " << *from_set;
+    } else {
+      os << file_;
+      if (at.IsDefined() && at.Mark().line >= 0) os << ":" << (at.Mark().line + 1);
+    }
     os << ": " << key << ": " << what;
     throw InputError(os.str());
   }
 
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
   void keys(const YAML::Node& map, const std::string& path, const std::set<std::string>& allowed) const {
     if (!map.IsMap()) fail(map, path, "expected a map of keys");
+    std::set<std::string> seen;
     for (const auto& kv : map) {
       const std::string k = kv.first.as<std::string>();
       if (!allowed.count(k)) {
         std::string list;
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(kv.first, path + "." + k, "unknown key (allowed here: " + list + ")");
+        fail(kv.first, join(path, k), "unknown key (allowed here: " + list + ")");
       }
+      // yaml-cpp keeps both entries of a repeated key and reads the first: refuse it.
+      if (!seen.insert(k).second) fail(kv.first, join(path, k), "given twice");
     }
   }
 
   YAML::Node need(const YAML::Node& map, const std::string& key, const std::string& path) const {
     const YAML::Node n = map[key];
-    if (!n) fail(map, path + "." + key, "missing (required)");
+    if (!n) fail(map, join(path, key), "missing (required)");
     return n;
   }
 
@@ -63,7 +84,7 @@ class Reader {
     }
   }
   double number(const YAML::Node& map, const std::string& k, const std::string& path, double fallback) const {
-    return map[k] ? number(map[k], path + "." + k) : fallback;
+    return map[k] ? number(map[k], join(path, k)) : fallback;
   }
   double positive(const YAML::Node& n, const std::string& key, const std::string& what) const {
     const double v = number(n, key);
@@ -98,7 +119,7 @@ class Reader {
   }
   Eigen::Vector2d vec2(const YAML::Node& map, const std::string& k, const std::string& path,
                        const Eigen::Vector2d& fallback) const {
-    return map[k] ? vec2(map[k], path + "." + k) : fallback;
+    return map[k] ? vec2(map[k], join(path, k)) : fallback;
   }
 
   TimeFunctionPtr function(const YAML::Node& n, const std::string& key) const {
@@ -149,6 +170,7 @@ class Reader {
  private:
   std::string file_;
   ExpressionScope scope_;
+  std::vector<std::pair<YAML::Node, std::string>> overrides_;
 };
 
 struct BodyRef {
@@ -213,36 +235,41 @@ void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<s
                         "consistent_start", "newton"});
   const std::string scheme = s["scheme"] ? rd.text(s["scheme"], "solver.scheme") : "generalized-alpha";
   const bool explicit_any = s["alpha_m"] || s["alpha_f"] || s["beta"] || s["gamma"];
-  const double rho = s["rho_inf"] ? rd.number(s["rho_inf"], "solver.rho_inf") : (scheme == "hht" ? 0.9 : 0.7);
-  try {
-    if (scheme == "generalized-alpha") {
-      if (explicit_any) {
-        if (s["rho_inf"]) rd.fail(s["rho_inf"], "solver.rho_inf", "give either rho_inf or alpha_m/alpha_f/beta/gamma, not both");
-        for (const char* k : {"alpha_m", "alpha_f", "beta", "gamma"})
-          if (!s[k]) rd.fail(s, std::string("solver.") + k, "missing: explicit parameters need all of alpha_m, alpha_f, beta, gamma");
-        rs.parameters = AlphaParameters::explicit_values(rd.number(s["alpha_m"], "solver.alpha_m"),
-                                                         rd.number(s["alpha_f"], "solver.alpha_f"),
-                                                         rd.number(s["beta"], "solver.beta"),
-                                                         rd.number(s["gamma"], "solver.gamma"));
-      } else {
-        rs.parameters = AlphaParameters::from_rho_inf(rho);
-      }
-    } else if (scheme == "hht") {
-      if (s["alpha_m"] || s["alpha_f"] || s["beta"] || s["gamma"])
-        rd.fail(s, "solver", "scheme hht takes rho_inf only (alpha_m, alpha_f, beta, gamma follow from it)");
-      rs.parameters = AlphaParameters::hht(rho);
-    } else if (scheme == "newmark") {
-      if (s["alpha_m"] || s["alpha_f"] || s["rho_inf"])
-        rd.fail(s, "solver", "scheme newmark takes beta and gamma only (alpha_m = alpha_f = 0)");
-      rs.parameters = AlphaParameters::newmark(rd.number(s, "beta", "solver", 0.25), rd.number(s, "gamma", "solver", 0.5));
+  double rho = scheme == "hht" ? 0.9 : 0.7;
+  if (s["rho_inf"]) {
+    rho = rd.number(s["rho_inf"], "solver.rho_inf");
+    const double lo = scheme == "hht" ? 0.5 : 0.0;
+    if (!(rho >= lo && rho <= 1.0))
+      rd.fail(s["rho_inf"], "solver.rho_inf",
+              "expected a spectral radius in [" + std::string(scheme == "hht" ? "0.5" : "0") + ", 1]" +
+                  (scheme == "hht" ? " for HHT (α = (1 − ρ∞)/(1 + ρ∞) ∈ [0, 1/3])" : "") + ", got " + s["rho_inf"].Scalar());
+  }
+  if (scheme == "generalized-alpha") {
+    if (explicit_any) {
+      if (s["rho_inf"]) rd.fail(s["rho_inf"], "solver.rho_inf", "give either rho_inf or alpha_m/alpha_f/beta/gamma, not both");
+      for (const char* k : {"alpha_m", "alpha_f", "beta", "gamma"})
+        if (!s[k]) rd.fail(s, std::string("solver.") + k, "missing: explicit parameters need all of alpha_m, alpha_f, beta, gamma");
+      rs.parameters = AlphaParameters::explicit_values(rd.number(s["alpha_m"], "solver.alpha_m"),
+                                                       rd.number(s["alpha_f"], "solver.alpha_f"),
+                                                       rd.number(s["beta"], "solver.beta"),
+                                                       rd.number(s["gamma"], "solver.gamma"));
     } else {
-      rd.fail(s["scheme"], "solver.scheme", "unknown scheme '" + scheme + "' (expected generalized-alpha, hht, newmark)");
+      rs.parameters = AlphaParameters::from_rho_inf(rho);
     }
+  } else if (scheme == "hht") {
+    if (explicit_any) rd.fail(s, "solver", "scheme hht takes rho_inf only (alpha_m, alpha_f, beta, gamma follow from it)");
+    rs.parameters = AlphaParameters::hht(rho);
+  } else if (scheme == "newmark") {
+    if (s["alpha_m"] || s["alpha_f"] || s["rho_inf"])
+      rd.fail(s, "solver", "scheme newmark takes beta and gamma only (alpha_m = alpha_f = 0)");
+    rs.parameters = AlphaParameters::newmark(rd.number(s, "beta", "solver", 0.25), rd.number(s, "gamma", "solver", 0.5));
+  } else {
+    rd.fail(s["scheme"], "solver.scheme", "unknown scheme '" + scheme + "' (expected generalized-alpha, hht, newmark)");
+  }
+  try {
     rs.parameters.validate();
   } catch (const InputError& e) {
-    const std::string what = e.what();
-    if (what.rfind("solver", 0) == 0) rd.fail(s, "solver", what);
-    throw;
+    rd.fail(s, "solver", e.what());
   }
   warnings = rs.parameters.warnings();
   if (s["h"]) rs.h = rd.positive(s["h"], "solver.h", "step size (s)");
@@ -451,7 +478,7 @@ void read_forces(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& mo
 void read_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
   if (!list) return;
   if (!list.IsSequence()) rd.fail(list, "sensors", "expected a list of sensors");
-  std::set<std::string> names{"t"};
+  std::set<std::string> names;
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node s = list[i];
     std::string path = "sensors[" + std::to_string(i) + "]";
@@ -459,7 +486,8 @@ void read_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& m
     Sensor sn;
     sn.name = rd.text(rd.need(s, "name", path), path + ".name");
     path = "sensors[" + sn.name + "]";
-    if (!names.insert(sn.name).second) rd.fail(s["name"], path + ".name", "sensor name '" + sn.name + "' is used already (or is 't')");
+    if (sn.name == "t") rd.fail(s["name"], path + ".name", "'t' is reserved for the time column of the CSV");
+    if (!names.insert(sn.name).second) rd.fail(s["name"], path + ".name", "another sensor is named '" + sn.name + "' already");
     if (sn.name.find_first_of(",\"\n") != std::string::npos) rd.fail(s["name"], path + ".name", "a sensor name may not contain commas or quotes");
     const std::string type = rd.text(rd.need(s, "type", path), path + ".type");
     auto rigid = [&](const char* key) {
@@ -516,7 +544,8 @@ void read_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& m
   }
 }
 
-void apply_override(YAML::Node root, const std::string& assignment) {
+/// Applies "a.b.2.c=value" to the tree and returns the node it put there.
+YAML::Node apply_override(YAML::Node root, const std::string& assignment) {
   const size_t eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set " + assignment + ": expected key.path=value (e.g. solver.h=1e-3)");
@@ -524,24 +553,39 @@ void apply_override(YAML::Node root, const std::string& assignment) {
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  auto index = [&](const YAML::Node& seq, const std::string& part) {
+    if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError("--set " + assignment + ": '" + part + "' names an entry of a list: expected an index 0, 1, ...");
+    const size_t idx = std::stoul(part);
+    if (idx >= seq.size())
+      throw InputError("--set " + assignment + ": index " + part + " is out of range (the list has " +
+                       std::to_string(seq.size()) + " entries)");
+    return idx;
+  };
   YAML::Node cur = root;
+  std::string walked;
   for (size_t i = 0; i + 1 < parts.size(); ++i) {
-    if (cur.IsSequence()) {
-      const size_t idx = std::stoul(parts[i]);
-      if (idx >= cur.size()) throw InputError("--set " + key + ": index " + parts[i] + " is out of range");
-      cur.reset(cur[idx]);
-      continue;
+    if (cur.IsScalar())
+      throw InputError("--set " + assignment + ": '" + walked + "' is a value, not a map: it has no key '" + parts[i] + "'");
+    if (cur.IsSequence()) cur.reset(cur[index(cur, parts[i])]);
+    else {
+      if (!cur[parts[i]]) cur[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      cur.reset(cur[parts[i]]);
     }
-    if (cur.IsScalar()) throw InputError("--set " + key + ": '" + parts[i] + "' is inside a value, not a map");
-    if (!cur[parts[i]]) cur[parts[i]] = YAML::Node(YAML::NodeType::Map);
-    cur.reset(cur[parts[i]]);
+    walked += (walked.empty() ? "" : ".") + parts[i];
   }
-  if (cur.IsScalar()) throw InputError("--set " + key + ": the parent is a value, not a map");
-  cur[parts.back()] = YAML::Load(value);
+  if (cur.IsScalar())
+    throw InputError("--set " + assignment + ": '" + walked + "' is a value, not a map: it has no key '" + parts.back() + "'");
+  const YAML::Node v = YAML::Load(value);
+  if (cur.IsSequence()) cur[index(cur, parts.back())] = v;
+  else cur[parts.back()] = v;
+  return v;
 }
 
-Scene build(const YAML::Node& root, const std::string& label) {
+Scene build(const YAML::Node& root, const std::string& label,
+            const std::vector<std::pair<YAML::Node, std::string>>& overrides) {
   Reader rd(label);
+  for (const auto& [node, text] : overrides) rd.add_override(node, text);
   Scene scene;
   scene.file = label;
   if (!root.IsMap()) rd.fail(root, "(top level)", "expected a map of sections (solver, bodies, joints, ...)");
@@ -579,17 +623,16 @@ Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
   } catch (const YAML::Exception& e) {
     throw InputError(label + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   }
+  std::vector<std::pair<YAML::Node, std::string>> applied;
   for (const auto& o : overrides) {
     try {
-      apply_override(root, o);
+      applied.emplace_back(apply_override(root, o), o);
     } catch (const YAML::Exception& e) {
-      throw InputError("--set " + o + ": " + e.msg);
-    } catch (const std::logic_error&) {
-      throw InputError("--set " + o + ": expected a list index");
+      throw InputError(label + ": --set " + o + ": " + e.msg);
     }
   }
   try {
-    return build(root, label);
+    return build(root, label, applied);
   } catch (const YAML::Exception& e) {
     throw InputError(label + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
@@ -598,6 +641,9 @@ Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
 }  // namespace
 
 Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": cannot open the scene file (no such file)");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": cannot open the scene file (not a file)");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the scene file");
   return load([&] { return YAML::LoadFile(path); }, path, overrides);

@@ -66,14 +66,14 @@ joints:
 )";
   Scene sc = read_scene_text(yaml, "loose.yaml");
   const std::string why = diagnose_singular_system(*sc.model, sc.model->initial_state());
-  EXPECT_NE(why.find("node 'loose' (x)"), std::string::npos) << why;
-  EXPECT_NE(why.find("node 'loose' (y)"), std::string::npos) << why;
+  EXPECT_NE(why.find("body 'loose' (x)"), std::string::npos) << why;
+  EXPECT_NE(why.find("body 'loose' (y)"), std::string::npos) << why;
   EXPECT_EQ(why.find("tipnode"), std::string::npos) << why;
   EXPECT_EQ(why.find("redundant"), std::string::npos) << why;
 }
 
 // Through the run driver: redundant joints stop the run before any step, as bad input naming
-// the joint; a free massless point stops it as a solver failure whose message names the node.
+// the joint; so does a free massless point, naming the body.
 TEST(Diagnostics, RunReportsRedundantJointsAndFreeMasslessPointsByName) {
   RunOptions opt;
   opt.write_results = false;
@@ -96,8 +96,9 @@ joints:
   try {
     run_simulation(free, opt, PETSC_COMM_WORLD);
     ADD_FAILURE() << "no error";
-  } catch (const SolverError& e) {
-    EXPECT_NE(std::string(e.what()).find("node 'loose'"), std::string::npos) << e.what();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("free.yaml"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("body 'loose'"), std::string::npos) << e.what();
   }
 }
 

@@ -11,6 +11,7 @@
 #include <petscmat.h>
 #include <petscvec.h>
 
+#include <string>
 #include <vector>
 
 #include "alphaflex/model/model.hpp"
@@ -44,7 +45,8 @@ class SaddlePointSystem {
   SaddlePointSystem(const SaddlePointSystem&) = delete;
   SaddlePointSystem& operator=(const SaddlePointSystem&) = delete;
 
-  /// Assembles r (always) and S (if `matrix`) at state `s`.
+  /// Assembles r (always) and S (if `matrix`) at state `s`. An exception from an element or a
+  /// joint on any rank becomes a SolverError with that message on every rank (no rank hangs).
   PetscErrorCode assemble(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows, bool matrix);
 
   Mat matrix() const { return S_; }
@@ -60,6 +62,9 @@ class SaddlePointSystem {
 
  private:
   PetscErrorCode preallocate();
+  PetscErrorCode add_local_contributions(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
+                                         bool matrix);
+  PetscErrorCode raise_if_any_rank_failed(const std::string& local_error);
 
   const Model& model_;
   const DofMap& map_;
