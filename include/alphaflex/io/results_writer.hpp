@@ -5,6 +5,7 @@
 //
 // With the replicated state of the core engine, rank 0 writes everything; the parallel issue
 // switches the HDF5 side to collective MPI-IO writes of the same layout.
+#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -42,6 +43,7 @@ class ResultsWriter {
   long long file_ = -1;  // hid_t
   std::FILE* csv_ = nullptr;
   std::vector<double> times_;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   std::vector<std::string> groups_;
 };
 
