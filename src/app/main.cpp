@@ -5,6 +5,7 @@
 // Exit codes: 0 success, 1 bad input, 2 bad command line, 3 solver failure, 4 internal error.
 #include <petscsys.h>
 
+#include <cmath>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -40,7 +41,7 @@ CommandLine parse(int argc, char** argv) {
     if (a == "-h" || a == "--help") {
       cl.command = "help";
     } else if (a == "-o" || a == "--output") {
-      if (i + 1 >= argc) cl.error = a + " needs a directory";
+      if (i + 1 >= argc || argv[i + 1][0] == '\0') cl.error = a + " needs a directory";
       else cl.outdir = argv[++i];
     } else if (a == "--set") {
       if (i + 1 >= argc) cl.error = "--set needs key=value";
@@ -108,7 +109,8 @@ int main(int argc, char** argv) {
       const auto& p = scene.settings.parameters;
       std::cout << "alphaflex: " << scene.name << " (" << cl.scene << ") on " << size << " rank(s)\n"
                 << "  scheme " << p.scheme << ": alpha_m = " << p.alpha_m << ", alpha_f = " << p.alpha_f
-                << ", beta = " << p.beta << ", gamma = " << p.gamma << " (rho_inf = " << p.rho_infinity()
+                << ", beta = " << p.beta << ", gamma = " << p.gamma
+                << " (rho_inf = " << std::round(p.rho_infinity() * 1e4) / 1e4
                 << "), scaling " << (scene.settings.integrator.scaling ? "on" : "off") << "\n";
       for (const auto& w : scene.warnings) std::cout << "  warning: " << w << "\n";
     }
@@ -116,7 +118,7 @@ int main(int argc, char** argv) {
     opt.outdir = cl.outdir;
     const alphaflex::RunSummary sum = alphaflex::run_simulation(scene, opt, PETSC_COMM_WORLD);
     if (rank == 0) {
-      if (sum.projection > 0.0) std::cout << "  consistent start: initial coordinates moved by at most " << sum.projection << "\n";
+      if (sum.projection > 1e-12) std::cout << "  consistent start: initial coordinates moved by at most " << sum.projection << "\n";
       std::cout << alphaflex::format_summary(scene, sum);
     }
   } catch (const alphaflex::InputError& e) {

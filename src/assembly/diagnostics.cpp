@@ -7,7 +7,7 @@
 namespace alphaflex {
 namespace {
 
-constexpr int kDenseLimit = 4000;  // unknowns; beyond this the O(n³) check is not attempted
+constexpr int kDenseLimit = 2000;  // unknowns; beyond this the O(n³) check is not attempted
 
 Eigen::MatrixXd dense_constraint_jacobian(const Model& m, const MechanicalState& s, std::vector<int>& row_joint,
                                           std::vector<int>& row_eq) {
@@ -28,51 +28,46 @@ Eigen::MatrixXd dense_constraint_jacobian(const Model& m, const MechanicalState&
   return A;
 }
 
-const char* coordinate_name(NodeKind kind, int k) {
-  static const char* rigid[] = {"x", "y", "theta"};
-  if (kind == NodeKind::LineParticle2D) return "s";
-  return rigid[k];
-}
-
 }  // namespace
 
 std::vector<RedundantEquation> find_redundant_constraints(const Model& m, const MechanicalState& s, double tol) {
   std::vector<RedundantEquation> out;
-  if (m.num_multipliers() == 0 || m.num_dofs() > kDenseLimit) return out;
+  // Dense Φ_q: up to ~20 million entries (160 MB); larger models are left to the factorization.
+  if (m.num_multipliers() == 0 || static_cast<double>(m.num_multipliers()) * m.num_dofs() > 2e7) return out;
   std::vector<int> row_joint, row_eq;
   const Eigen::MatrixXd A = dense_constraint_jacobian(m, s, row_joint, row_eq);
-  // Greedy in scene order: an equation is redundant if it lies (to tol) in the span of the
-  // independent equations before it; its coefficients name the joints it depends on.
+  // Greedy in scene order (modified Gram–Schmidt, twice for stability): an equation is redundant if
+  // it lies, to tol, in the span of the independent equations before it. Only for the redundant
+  // ones a least-squares fit names the joints it depends on.
   std::vector<int> kept;
+  std::vector<Eigen::VectorXd> basis;
   for (Eigen::Index r = 0; r < A.rows(); ++r) {
-    const Eigen::RowVectorXd a = A.row(r);
+    const Eigen::VectorXd a = A.row(r).transpose();
     const double norm = a.norm();
-    bool redundant = norm == 0.0;
-    Eigen::VectorXd coef;
-    if (!redundant && !kept.empty()) {
-      Eigen::MatrixXd B(A.cols(), static_cast<Eigen::Index>(kept.size()));
-      for (size_t k = 0; k < kept.size(); ++k) B.col(static_cast<Eigen::Index>(k)) = A.row(kept[k]).transpose();
-      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(B);
-      coef = qr.solve(a.transpose());
-      redundant = (B * coef - a.transpose()).norm() <= tol * norm;
-    }
-    if (!redundant) {
+    Eigen::VectorXd w = a;
+    for (int pass = 0; pass < 2; ++pass)
+      for (const auto& b : basis) w -= b.dot(w) * b;
+    if (norm > 0.0 && w.norm() > tol * norm) {
       kept.push_back(static_cast<int>(r));
+      basis.push_back(w / w.norm());
       continue;
     }
     RedundantEquation e{row_joint[static_cast<size_t>(r)], row_eq[static_cast<size_t>(r)], {}};
-    std::set<int> deps;
-    for (Eigen::Index k = 0; k < coef.size(); ++k)
-      if (std::fabs(coef[k]) > 1e-8) deps.insert(row_joint[static_cast<size_t>(kept[static_cast<size_t>(k)])]);
-    e.depends_on.assign(deps.begin(), deps.end());
+    if (!kept.empty() && norm > 0.0) {
+      Eigen::MatrixXd B(A.cols(), static_cast<Eigen::Index>(kept.size()));
+      for (size_t k = 0; k < kept.size(); ++k) B.col(static_cast<Eigen::Index>(k)) = A.row(kept[k]).transpose();
+      const Eigen::VectorXd coef = B.colPivHouseholderQr().solve(a);
+      std::set<int> deps;
+      for (Eigen::Index k = 0; k < coef.size(); ++k)
+        if (std::fabs(coef[k]) > 1e-8) deps.insert(row_joint[static_cast<size_t>(kept[static_cast<size_t>(k)])]);
+      e.depends_on.assign(deps.begin(), deps.end());
+    }
     out.push_back(e);
   }
   return out;
 }
 
 std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
-  if (m.num_dofs() > kDenseLimit)
-    return "(the dense singularity diagnosis is skipped above " + std::to_string(kDenseLimit) + " coordinates)";
   std::ostringstream os;
   const auto red = find_redundant_constraints(m, s);
   for (const auto& e : red) {
@@ -84,7 +79,13 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
       os << (k ? ", " : " ") << "'" << m.constraints()[static_cast<size_t>(e.depends_on[k])]->name() << "'";
     os << "; remove it or use a joint that imposes fewer equations.\n";
   }
-  // Unconstrained massless directions: null space of [M; Φ_q].
+  // Directions neither inertia nor joints determine: null space of [M; Φ_q]. The consistent start
+  // solves [[M, Φ_qᵀ],[Φ_q, 0]] for q̈0 and λ0, which is singular there even if springs act (a
+  // massless point on springs alone would need a static solve). O(n³): small models only.
+  if (m.num_dofs() > kDenseLimit) {
+    os << "(the search for coordinates that nothing acts on is skipped above " << kDenseLimit << " coordinates)";
+    return os.str();
+  }
   std::vector<int> rj, re;
   const Eigen::MatrixXd A = dense_constraint_jacobian(m, s, rj, re);
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m.num_dofs(), m.num_dofs());
@@ -108,7 +109,7 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
   lu.setThreshold(1e-12);
   const Eigen::MatrixXd kernel = lu.dimensionOfKernel() > 0 ? Eigen::MatrixXd(lu.kernel()) : Eigen::MatrixXd();
   for (Eigen::Index k = 0; k < kernel.cols(); ++k) {
-    os << "free massless motion: no mass and no joint acts on";
+    os << "massless motion no joint determines:";
     const Eigen::VectorXd v = kernel.col(k) / kernel.col(k).cwiseAbs().maxCoeff();
     bool first = true;
     for (const Node& n : m.nodes())
@@ -117,7 +118,8 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
           os << (first ? " " : ", ") << "body '" << n.name << "' (" << coordinate_name(n.kind, d) << ")";
           first = false;
         }
-    os << "; give it a mass or attach it by more joints.\n";
+    os << " has no mass and no joint fixes it, so its acceleration is undefined (springs alone do not"
+          " make it determined); give it a mass or attach it by joints.\n";
   }
   // One finding per line, indented under the message that carries them.
   std::string r = os.str();

@@ -76,9 +76,9 @@ PetscErrorCode SaddlePointSystem::preallocate() {
   }
   PetscCall(MatCreate(comm_, &S_));
   PetscCall(MatSetSizes(S_, hi - lo, hi - lo, n, n));
+  // MATAIJ on purpose (sequential or MPI by communicator): the preallocation below is AIJ's, and
+  // MUMPS takes it directly. The type is not left to the options database.
   PetscCall(MatSetType(S_, MATAIJ));
-  PetscCall(MatSetOptionsPrefix(S_, "alphaflex_"));
-  PetscCall(MatSetFromOptions(S_));
   PetscCall(MatSeqAIJSetPreallocation(S_, 0, d_nnz.data()));
   PetscCall(MatMPIAIJSetPreallocation(S_, 0, d_nnz.data(), 0, o_nnz.data()));
   PetscCall(MatSetOption(S_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));

@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -32,17 +33,6 @@ void check_petsc(PetscErrorCode ierr, const char* what) {
   if (ierr) throw SolverError(std::string("PETSc error ") + std::to_string(ierr) + " in " + what);
 }
 
-const char* dof_name(NodeKind kind, int k) {
-  static const char* rigid[] = {"x", "y", "theta"};
-  static const char* particle[] = {"x", "y"};
-  switch (kind) {
-    case NodeKind::RigidBody2D: return rigid[k];
-    case NodeKind::Particle2D: return particle[k];
-    case NodeKind::LineParticle2D: return "s";
-  }
-  return "?";
-}
-
 }  // namespace
 
 GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solver, AlphaParameters params,
@@ -67,7 +57,10 @@ ModelVector GeneralizedAlpha::solve_linear(const MechanicalState& s, const Assem
   double t2 = MPI_Wtime();
   times_.factorization += t2 - t1;
   if (!solver_.failure().empty()) {
+    // Name the cause (redundant joints, coordinates nothing acts on) instead of a MUMPS code; at
+    // the start it is the model as given, i.e. bad input.
     const std::string why = diagnose_singular_system(sys_.model(), s);
+    if (initializing_ && !why.empty()) throw InputError("the model is singular at t = 0:\n  " + why);
     std::ostringstream os;
     os << "the iteration matrix could not be factored at t = " << s.t << " s: " << solver_.failure();
     if (!why.empty()) os << "\n  " << why;
@@ -92,7 +85,7 @@ std::string GeneralizedAlpha::describe_largest(const ModelVector& r) const {
     for (const Node& n : m.nodes())
       if (i >= n.first_dof && i < n.first_dof + n.ndof)
         os << "largest equilibrium residual " << r.dofs[i] << " at node '" << n.name << "' ("
-           << dof_name(n.kind, static_cast<int>(i) - n.first_dof) << ")";
+           << coordinate_name(n.kind, static_cast<int>(i) - n.first_dof) << ")";
   }
   if (r.multipliers.size()) {
     r.multipliers.cwiseAbs().maxCoeff(&j);
@@ -109,15 +102,15 @@ std::string GeneralizedAlpha::describe_largest(const ModelVector& r) const {
 double GeneralizedAlpha::initialize(MechanicalState& s) {
   const Model& m = sys_.model();
   const Eigen::VectorXd q_in = s.q;
-  // A singular model (redundant joints, massless coordinates nothing acts on) makes every S_t
-  // singular whatever h is: name the joints and bodies instead of failing in MUMPS later.
-  const std::string why = diagnose_singular_system(m, s);
-  if (!why.empty()) {
+  // Redundant joints make every S_t singular whatever h is, and MUMPS may not notice when the
+  // dependence is only up to round-off: check them up front (Gram–Schmidt on Φ_q, cheap), and
+  // leave the full diagnosis to a failed factorization.
+  if (!find_redundant_constraints(m, s).empty()) {
     std::ostringstream os;
-    os << "the model is singular at t = 0:\n  " << why;
+    os << "the model is singular at t = 0:\n  " << diagnose_singular_system(m, s);
+    double viol = 0.0;
     Eigen::VectorXd phi;
     Eigen::MatrixXd phi_q;
-    double viol = 0.0;
     for (const auto& c : m.constraints()) {
       c->evaluate(gather(s.q, m.dofs_of(c->nodes())), s.t, phi, phi_q);
       viol = std::max(viol, inf_norm(phi));
@@ -127,21 +120,24 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
          << "); a singular configuration such as links in a straight line can look redundant. Check the positions.";
     throw InputError(os.str());
   }
+  initializing_ = true;
+  struct Reset {
+    bool& flag;
+    ~Reset() { flag = false; }
+  } reset{initializing_};
   AssemblyCoefficients proj;
   proj.identity = 1.0;
   if (opt_.consistent_start && m.num_multipliers() > 0) {
     // Gauss–Newton projection onto Φ(q, t0) = 0 with the minimum-norm correction.
     ModelVector r;
-    double viol = 0.0;
     for (int it = 0; it < 50; ++it) {
-      const ModelVector x = solve_linear(s, proj, ConstraintRows::Position, &r);
-      viol = inf_norm(r.multipliers);
+      const ModelVector x = solve_linear(s, proj, ConstraintRows::Position, nullptr);
       s.q -= x.dofs;
       if (inf_norm(x.dofs) <= 1e-14 * std::max(1.0, inf_norm(s.q))) break;
     }
     check_petsc(sys_.assemble(s, proj, ConstraintRows::Position, false), "assembly");
     check_petsc(sys_.to_model(sys_.residual(), r), "residual gather");
-    viol = inf_norm(r.multipliers);
+    const double viol = inf_norm(r.multipliers);
     if (viol > 1e-9 * std::max(1.0, inf_norm(s.q))) {
       ModelVector only_constraints{Eigen::VectorXd(), r.multipliers};
       std::ostringstream os;
@@ -224,12 +220,14 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
     std::ostringstream os;
     os.precision(4);
     os << "Newton did not converge at t = " << n1.t << " s (h = " << h << " s) after "
-       << report.iterations << " iterations.\n  iteration  |r_q|" << (opt_.scaling ? " (x beta h^2)" : "")
-       << "   |Phi|        |dq|_inf     |dlambda|_inf\n";
+       << report.iterations << " iterations.\n  " << std::setw(9) << "iteration" << std::setw(13) << "|r_q|"
+       << std::setw(13) << "|Phi|" << std::setw(13) << "|dq|_inf" << std::setw(15) << "|dlambda|_inf"
+       << (opt_.scaling ? "   (r_q scaled by beta h^2)" : "") << "\n";
     for (size_t i = 0; i < report.history.size(); ++i) {
       const auto& h_i = report.history[i];
-      os << "  " << (i + 1) << "          " << std::scientific << h_i.residual_dynamic << "  "
-         << h_i.residual_constraint << "  " << h_i.correction_q << "  " << h_i.correction_lambda << "\n"
+      os << "  " << std::setw(9) << (i + 1) << std::scientific << std::setprecision(4) << std::setw(13)
+         << h_i.residual_dynamic << std::setw(13) << h_i.residual_constraint << std::setw(13) << h_i.correction_q
+         << std::setw(15) << h_i.correction_lambda << "\n"
          << std::defaultfloat;
     }
     os << "  " << describe_largest(r)

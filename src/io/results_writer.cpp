@@ -68,10 +68,10 @@ ResultsWriter::~ResultsWriter() {
   if (file_ >= 0) H5Fclose(file_);
 }
 
-void ResultsWriter::write_sensors(const MechanicalState& s) {
+void ResultsWriter::write_sensors(double t, const std::vector<double>& values) {
   if (!active_) return;
-  std::fprintf(csv_, "%.17g", s.t);
-  for (const auto& sn : model_.sensors()) std::fprintf(csv_, ",%.17g", sn.evaluate(model_, s));
+  std::fprintf(csv_, "%.17g", t);
+  for (double v : values) std::fprintf(csv_, ",%.17g", v);
   std::fprintf(csv_, "\n");
 }
 

@@ -96,9 +96,10 @@ class Reader {
     if (!(v >= 0.0)) fail(n, key, "expected a non-negative " + what + ", got " + n.Scalar());
     return v;
   }
-  int integer(const YAML::Node& n, const std::string& key, int min) const {
+  int integer(const YAML::Node& n, const std::string& key, int min, int max = 1000000) const {
     const double v = number(n, key);
-    if (v != std::floor(v) || v < min) fail(n, key, "expected an integer >= " + std::to_string(min));
+    if (v != std::floor(v) || v < min || v > max)
+      fail(n, key, "expected an integer from " + std::to_string(min) + " to " + std::to_string(max));
     return static_cast<int>(v);
   }
   bool flag(const YAML::Node& n, const std::string& key) const {
@@ -260,9 +261,14 @@ void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<s
     if (explicit_any) rd.fail(s, "solver", "scheme hht takes rho_inf only (alpha_m, alpha_f, beta, gamma follow from it)");
     rs.parameters = AlphaParameters::hht(rho);
   } else if (scheme == "newmark") {
-    if (s["alpha_m"] || s["alpha_f"] || s["rho_inf"])
-      rd.fail(s, "solver", "scheme newmark takes beta and gamma only (alpha_m = alpha_f = 0)");
-    rs.parameters = AlphaParameters::newmark(rd.number(s, "beta", "solver", 0.25), rd.number(s, "gamma", "solver", 0.5));
+    if (s["alpha_m"] || s["alpha_f"])
+      rd.fail(s, "solver", "scheme newmark has alpha_m = alpha_f = 0: give rho_inf, or beta and gamma");
+    if (s["rho_inf"] && (s["beta"] || s["gamma"]))
+      rd.fail(s["rho_inf"], "solver.rho_inf", "give either rho_inf or beta/gamma for scheme newmark, not both");
+    if (s["rho_inf"])  // damped Newmark with spectral radius ρ∞: γ = (3 − ρ∞)/(2(1 + ρ∞)), β = 1/(1 + ρ∞)²
+      rs.parameters = AlphaParameters::newmark(1.0 / ((1.0 + rho) * (1.0 + rho)), (3.0 - rho) / (2.0 * (1.0 + rho)));
+    else
+      rs.parameters = AlphaParameters::newmark(rd.number(s, "beta", "solver", 0.25), rd.number(s, "gamma", "solver", 0.5));
   } else {
     rd.fail(s["scheme"], "solver.scheme", "unknown scheme '" + scheme + "' (expected generalized-alpha, hht, newmark)");
   }
@@ -274,6 +280,9 @@ void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<s
   warnings = rs.parameters.warnings();
   if (s["h"]) rs.h = rd.positive(s["h"], "solver.h", "step size (s)");
   if (s["t_end"]) rs.t_end = rd.positive(s["t_end"], "solver.t_end", "final time (s)");
+  if (rs.h > rs.t_end) rd.fail(s["h"] ? s["h"] : s, "solver.h", "the step size exceeds solver.t_end");
+  if (rs.t_end / rs.h > 1e10)
+    rd.fail(s["h"] ? s["h"] : s, "solver.h", "t_end/h exceeds 1e10 steps; choose a larger step size");
   if (s["scaling"]) rs.integrator.scaling = rd.flag(s["scaling"], "solver.scaling");
   if (s["consistent_start"]) rs.integrator.consistent_start = rd.flag(s["consistent_start"], "solver.consistent_start");
   if (const YAML::Node n = s["newton"]) {

@@ -8,6 +8,7 @@
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/integrators/alpha_parameters.hpp"
+#include "alphaflex/io/scene.hpp"
 
 namespace alphaflex {
 namespace {
@@ -86,6 +87,18 @@ TEST(AlphaParameters, NewmarkTrapezoidalIsSecondOrderButNotStrictlyStable) {
   EXPECT_TRUE(mentions(p.warnings(), "eq. 20"));
   // Damped Newmark (γ > 1/2) loses the order-2 condition.
   EXPECT_TRUE(mentions(AlphaParameters::newmark(0.3025, 0.6).warnings(), "eq. 17"));
+}
+
+// `scheme: newmark` with `rho_inf` is the damped Newmark γ = (3 − ρ∞)/(2(1 + ρ∞)),
+// β = 1/(1 + ρ∞)², whose spectral radius at infinity is ρ∞ and which is first order for ρ∞ < 1.
+TEST(AlphaParameters, DampedNewmarkFromRhoInfInAScene) {
+  Scene sc = read_scene_text("solver: {scheme: newmark, rho_inf: 0.5}\nbodies: [{name: b, type: particle, mass: 1, position: [0, 0]}]\n",
+                             "newmark.yaml");
+  const AlphaParameters& p = sc.settings.parameters;
+  EXPECT_DOUBLE_EQ(p.gamma, 2.5 / 3.0);
+  EXPECT_DOUBLE_EQ(p.beta, 1.0 / 2.25);
+  EXPECT_NEAR(p.rho_infinity(), 0.5, 2e-5);
+  EXPECT_TRUE(mentions(p.warnings(), "eq. 17"));
 }
 
 TEST(AlphaParameters, HhtPresetSatisfiesEq17And20) {

@@ -72,6 +72,31 @@ joints:
   EXPECT_EQ(why.find("redundant"), std::string::npos) << why;
 }
 
+// A massless point held by two springs but by no joint has no defined acceleration: the
+// consistent start's [[M, Φ_qᵀ],[Φ_q, 0]] is singular although the springs act on it. The run
+// stops as bad input naming the point and saying that springs are not enough.
+TEST(Diagnostics, MasslessPointOnSpringsAloneIsNamed) {
+  const char* yaml = R"(
+solver: {h: 1e-3, t_end: 0.01}
+bodies:
+  - {name: p, type: particle, position: [0.5, 0.1]}
+forces:
+  - {name: s1, type: spring_damper, body1: p, body2: ground, point2: [0, 0], stiffness: 100, rest_length: 0.4}
+  - {name: s2, type: spring_damper, body1: p, body2: ground, point2: [1, 0], stiffness: 100, rest_length: 0.4}
+)";
+  Scene sc = read_scene_text(yaml, "springs.yaml");
+  RunOptions opt;
+  opt.write_results = false;
+  try {
+    run_simulation(sc, opt, PETSC_COMM_WORLD);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("body 'p' (x)"), std::string::npos) << m;
+    EXPECT_NE(m.find("springs alone"), std::string::npos) << m;
+  }
+}
+
 // Through the run driver: redundant joints stop the run before any step, as bad input naming
 // the joint; so does a free massless point, naming the body.
 TEST(Diagnostics, RunReportsRedundantJointsAndFreeMasslessPointsByName) {

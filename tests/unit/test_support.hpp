@@ -23,6 +23,7 @@ inline RunSummary run_scene(const std::string& scene, const std::vector<std::str
   RunOptions opt;
   opt.write_results = false;
   opt.verbose = false;
+  opt.keep_history = true;
   return run_simulation(s, opt, PETSC_COMM_WORLD);
 }
 

@@ -14,6 +14,7 @@ struct RunOptions {
   std::string outdir = ".";
   bool write_results = true;  ///< HDF5/XDMF/CSV (tests may switch them off)
   bool verbose = true;        ///< header and summary on rank 0
+  bool keep_history = false;  ///< keep every step's sensors in RunSummary (tests; O(steps) memory)
 };
 
 struct RunSummary {
@@ -27,8 +28,9 @@ struct RunSummary {
   PhaseTimes times;
   MechanicalState final_state;
   std::vector<double> final_sensors;  ///< sensor values at the final time, in scene order
-  std::vector<double> times_out;      ///< t of every step (including 0)
-  std::vector<std::vector<double>> sensor_history;  ///< [step][sensor]
+  std::vector<double> times_out;      ///< t of every step (including 0), if keep_history
+  std::vector<std::vector<double>> sensor_history;  ///< [step][sensor], if keep_history
+  std::vector<std::string> warnings;  ///< found during the run (shortened last step, round-off floor, ...)
   std::string h5, xdmf, csv;
 };
 

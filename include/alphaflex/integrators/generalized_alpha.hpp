@@ -84,6 +84,7 @@ class GeneralizedAlpha {
   IntegratorOptions opt_;
   Eigen::VectorXd a_;
   PhaseTimes times_;
+  bool initializing_ = false;  ///< a singular matrix during initialize() is bad input
 };
 
 }  // namespace alphaflex

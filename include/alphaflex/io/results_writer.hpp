@@ -22,8 +22,8 @@ class ResultsWriter {
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
-  /// Sensors of this state (one CSV row).
-  void write_sensors(const MechanicalState& s);
+  /// One CSV row: time and the sensor values in scene order.
+  void write_sensors(double t, const std::vector<double>& values);
   /// Full state to HDF5 (one group) and a rewritten XDMF index.
   void write_fields(const MechanicalState& s);
   /// Flush and write the XDMF index (called at the end, also after a failure).

@@ -15,6 +15,8 @@ enum class NodeKind {
 };
 
 const char* to_string(NodeKind kind);
+/// Name of coordinate k of a node of this kind ("x", "y", "theta", "s"), for messages.
+const char* coordinate_name(NodeKind kind, int k);
 
 struct Node {
   std::string name;
