@@ -54,9 +54,13 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   last_state_ = state;
   PetscCall(KSPSetOperators(ksp_, A, A));
   PetscCall(KSPSetUp(ksp_));
-  ++numeric_;
   PC pc;
   PetscCall(KSPGetPC(ksp_, &pc));
+  // Count factorizations only when the options left the PC a factorization.
+  PetscBool factors = PETSC_FALSE;
+  PetscCall(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &factors, PCLU, PCCHOLESKY, ""));
+  if (factors) ++numeric_;
+  else symbolic_ = 0;
   PCFailedReason pcreason;
   PetscCall(PCGetFailedReason(pc, &pcreason));
   if (pcreason != PC_NOERROR) PetscCall(describe_failure("factorization"));

@@ -24,7 +24,8 @@ class LinearSolver {
 
   /// Empty when the last factor/solve succeeded; otherwise what failed, with MUMPS' INFOG codes.
   const std::string& failure() const { return failure_; }
-  /// Number of symbolic analyses and numeric factorizations done so far.
+  /// Number of symbolic analyses and numeric factorizations done so far (0 when the options
+  /// replace the LU by an iterative method).
   int symbolic_count() const { return symbolic_; }
   int numeric_count() const { return numeric_; }
 
