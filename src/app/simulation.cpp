@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/io/results_writer.hpp"
@@ -16,17 +17,6 @@
 
 namespace alphaflex {
 namespace {
-
-double constraint_violation(const Model& m, const MechanicalState& s) {
-  double viol = 0.0;
-  Eigen::VectorXd phi;
-  Eigen::MatrixXd phi_q;
-  for (const auto& c : m.constraints()) {
-    c->evaluate(gather(s.q, m.dofs_of(c->nodes())), s.t, phi, phi_q);
-    viol = std::max(viol, phi.cwiseAbs().maxCoeff());
-  }
-  return viol;
-}
 
 std::vector<double> sensor_values(const Model& m, const MechanicalState& s) {
   std::vector<double> v;

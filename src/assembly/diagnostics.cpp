@@ -12,40 +12,39 @@ namespace {
 
 constexpr int kDenseLimit = 2000;  // unknowns; beyond this the O(n³) check is not attempted
 
-Eigen::MatrixXd dense_constraint_jacobian(const Model& m, const MechanicalState& s, std::vector<int>& row_joint,
-                                          std::vector<int>& row_eq) {
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m.num_multipliers(), m.num_dofs());
+/// Calls f(row, column, value) for every entry of Φ_q(q, t), in model order.
+template <class F>
+void for_each_jacobian_entry(const Model& m, const MechanicalState& s, F&& f) {
+  Eigen::VectorXd phi;
+  Eigen::MatrixXd phi_q;
   for (size_t c = 0; c < m.constraints().size(); ++c) {
     const Constraint& con = *m.constraints()[c];
     const auto idx = m.dofs_of(con.nodes());
-    Eigen::VectorXd phi;
-    Eigen::MatrixXd phi_q;
     con.evaluate(gather(s.q, idx), s.t, phi, phi_q);
     const int first = m.first_multiplier(static_cast<int>(c));
-    for (int k = 0; k < con.size(); ++k) {
-      for (size_t j = 0; j < idx.size(); ++j) A(first + k, idx[j]) = phi_q(k, static_cast<Eigen::Index>(j));
+    for (int k = 0; k < con.size(); ++k)
+      for (size_t j = 0; j < idx.size(); ++j) f(first + k, idx[j], phi_q(k, static_cast<Eigen::Index>(j)));
+  }
+}
+
+Eigen::MatrixXd dense_constraint_jacobian(const Model& m, const MechanicalState& s, std::vector<int>& row_joint,
+                                          std::vector<int>& row_eq) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m.num_multipliers(), m.num_dofs());
+  for_each_jacobian_entry(m, s, [&](int r, int c, double v) { A(r, c) = v; });
+  for (size_t c = 0; c < m.constraints().size(); ++c)
+    for (int k = 0; k < m.constraints()[c]->size(); ++k) {
       row_joint.push_back(static_cast<int>(c));
       row_eq.push_back(k);
     }
-  }
   return A;
 }
 
 /// Rank of Φ_q by a sparse, rank-revealing QR of Φ_qᵀ (COLAMD ordering): true if full row rank.
 bool full_row_rank(const Model& m, const MechanicalState& s) {
   std::vector<Eigen::Triplet<double>> entries;
-  for (size_t c = 0; c < m.constraints().size(); ++c) {
-    const Constraint& con = *m.constraints()[c];
-    const auto idx = m.dofs_of(con.nodes());
-    Eigen::VectorXd phi;
-    Eigen::MatrixXd phi_q;
-    con.evaluate(gather(s.q, idx), s.t, phi, phi_q);
-    const int first = m.first_multiplier(static_cast<int>(c));
-    for (int k = 0; k < con.size(); ++k)
-      for (size_t j = 0; j < idx.size(); ++j)
-        if (phi_q(k, static_cast<Eigen::Index>(j)) != 0.0)
-          entries.emplace_back(idx[j], first + k, phi_q(k, static_cast<Eigen::Index>(j)));
-  }
+  for_each_jacobian_entry(m, s, [&](int r, int c, double v) {
+    if (v != 0.0) entries.emplace_back(c, r, v);
+  });
   Eigen::SparseMatrix<double> At(m.num_dofs(), m.num_multipliers());
   At.setFromTriplets(entries.begin(), entries.end());
   At.makeCompressed();
@@ -99,6 +98,17 @@ std::vector<RedundantEquation> find_redundant_constraints(const Model& m, const 
     out.push_back(e);
   }
   return out;
+}
+
+double constraint_violation(const Model& m, const MechanicalState& s) {
+  double viol = 0.0;
+  Eigen::VectorXd phi;
+  Eigen::MatrixXd phi_q;
+  for (const auto& c : m.constraints()) {
+    c->evaluate(gather(s.q, m.dofs_of(c->nodes())), s.t, phi, phi_q);
+    if (phi.size()) viol = std::max(viol, phi.cwiseAbs().maxCoeff());
+  }
+  return viol;
 }
 
 std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {

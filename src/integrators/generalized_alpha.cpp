@@ -108,13 +108,7 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   if (!find_redundant_constraints(m, s).empty()) {
     std::ostringstream os;
     os << "the model is singular at t = 0:\n  " << diagnose_singular_system(m, s);
-    double viol = 0.0;
-    Eigen::VectorXd phi;
-    Eigen::MatrixXd phi_q;
-    for (const auto& c : m.constraints()) {
-      c->evaluate(gather(s.q, m.dofs_of(c->nodes())), s.t, phi, phi_q);
-      viol = std::max(viol, inf_norm(phi));
-    }
+    const double viol = constraint_violation(m, s);
     if (viol > 1e-9 * std::max(1.0, inf_norm(s.q)))
       os << "\n  Note: the initial positions also violate the joints (by up to " << viol
          << "); a singular configuration such as links in a straight line can look redundant. Check the positions.";

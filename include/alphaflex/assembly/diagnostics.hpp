@@ -22,6 +22,9 @@ struct RedundantEquation {
 std::vector<RedundantEquation> find_redundant_constraints(const Model& model, const MechanicalState& s,
                                                           double tol = 1e-10);
 
+/// max |Φ(q, t)| over all joint equations (m or rad).
+double constraint_violation(const Model& model, const MechanicalState& s);
+
 /// Human-readable diagnosis of a singular saddle-point matrix at state s; empty if none found or
 /// if the model is too large for the dense check (then says so).
 std::string diagnose_singular_system(const Model& model, const MechanicalState& s);
