@@ -4,7 +4,9 @@
 //  - redundant constraints: Φ_q has dependent rows (a joint repeats what others impose);
 //  - unconstrained massless motion: a direction in which neither the mass matrix nor any joint
 //    acts (rank [M; Φ_q] < n), e.g. a massless point attached by too few joints.
-// Dense analysis (Eigen) on every rank alike; meant for models up to a few thousand unknowns.
+// Every rank computes the same answer. Whether Φ_q has full rank is decided by a sparse
+// rank-revealing QR (any size); naming the redundant joints and the massless search are dense
+// (Φ_q up to 2e7 entries; [M; Φ_q] up to 2000 coordinates).
 #include <string>
 #include <vector>
 
