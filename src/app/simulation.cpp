@@ -42,6 +42,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   sum.coordinates = model.num_dofs();
   sum.multipliers = model.num_multipliers();
   sum.unknowns = map.global_size();
+  for (const auto& sn : model.sensors()) sum.sensor_names.push_back(sn.name);
 
   // Output files first, and agree on success: only rank 0 writes, so a failure there must not
   // leave the other ranks waiting in the first collective call.

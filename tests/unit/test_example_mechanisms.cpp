@@ -8,21 +8,14 @@
 namespace alphaflex::testing {
 namespace {
 
-size_t column(const Scene& sc, const std::string& name) {
-  for (size_t i = 0; i < sc.model->sensors().size(); ++i)
-    if (sc.model->sensors()[i].name == name) return i;
-  throw std::runtime_error("no sensor " + name);
-}
-
 // With no spring and no push, the only horizontal forces are internal (the pin) or zero (the
 // rail's reaction is normal to it). Equilibrium is enforced exactly at every step, so
 // Σ m q̈_x = 0, hence Σ m a_x = 0 by eq. (3), and by eq. (5) the horizontal momentum
 // mc·vx_cart + mp·vx_pendulum keeps its initial value 0 to round-off.
 TEST(CartPendulum, HorizontalMomentumIsConservedWithoutExternalHorizontalForce) {
   const std::vector<std::string> free{"forces.0.stiffness=0", "forces.0.damping=0", "forces.1.value=[0, 0]"};
-  Scene sc = read_scene(source_path("inputs/cart_pendulum.yaml"), free);
   const RunSummary r = run_scene("cart_pendulum", free);
-  const size_t vc = column(sc, "vx_cart"), vp = column(sc, "vx_pendulum");
+  const size_t vc = column(r, "vx_cart"), vp = column(r, "vx_pendulum");
   const double mc = 2.0, mp = 0.5;  // inputs/cart_pendulum.yaml
   double worst = 0.0, scale = 0.0;
   for (const auto& row : r.sensor_history) {
@@ -38,9 +31,8 @@ TEST(CartPendulum, HorizontalMomentumIsConservedWithoutExternalHorizontalForce) 
 // ÿ is zero: the rail constraint is linear and holds exactly). Checks the sign and size of
 // the reported joint reaction.
 TEST(CartPendulum, RailReactionBalancesWeightAndPendulumInertia) {
-  Scene sc = read_scene(source_path("inputs/cart_pendulum.yaml"));
   const RunSummary r = run_scene("cart_pendulum", {});
-  const size_t fy = column(sc, "rail_fy"), ay = column(sc, "ay_pendulum");
+  const size_t fy = column(r, "rail_fy"), ay = column(r, "ay_pendulum");
   const double mc = 2.0, mp = 0.5, g = 9.81;
   for (const auto& row : r.sensor_history)
     ASSERT_NEAR(row[fy], (mc + mp) * g + mp * row[ay], 1e-8 * (mc + mp) * g);
@@ -52,14 +44,13 @@ TEST(CartPendulum, RailReactionBalancesWeightAndPendulumInertia) {
 // slot force on the crank and in the ground force at O fall like h² (slope in [1.8, 2.2]).
 TEST(QuickReturn, SecondOrderConvergenceAgainstReference) {
   const auto ref = read_csv(source_path("tests/reference/quick_return.csv"));
-  Scene sc = read_scene(source_path("inputs/quick_return.yaml"));
   const std::vector<std::string> names{"phi", "slot_fx", "O_fx"};
   std::vector<double> hs{2e-3, 1e-3, 5e-4, 2.5e-4};
   std::vector<std::vector<double>> err(names.size());
   for (double h : hs) {
     const RunSummary r = run_scene("quick_return", {"solver.h=" + std::to_string(h)});
     for (size_t k = 0; k < names.size(); ++k)
-      err[k].push_back(std::fabs(r.final_sensors[column(sc, names[k])] - at_time(ref, names[k], 1.0)));
+      err[k].push_back(std::fabs(r.final_sensors[column(r, names[k])] - at_time(ref, names[k], 1.0)));
   }
   for (size_t k = 0; k < names.size(); ++k) {
     const double p = fitted_slope(hs, err[k]);
@@ -75,11 +66,10 @@ TEST(QuickReturn, SecondOrderConvergenceAgainstReference) {
 // as eq. (38) says, is not yet O(h²).)
 TEST(QuickReturn, HistoryErrorIsSecondOrderRichardson) {
   const auto ref = read_csv(source_path("tests/reference/quick_return.csv"));
-  Scene sc = read_scene(source_path("inputs/quick_return.yaml"));
   const RunSummary coarse = run_scene("quick_return", {"solver.h=5e-4"});
   const RunSummary fine = run_scene("quick_return", {"solver.h=2.5e-4"});
   for (const char* n : {"phi", "psi", "slot_fx", "slot_fy", "O_fx", "O_fy", "Bx", "By"}) {
-    const size_t c = column(sc, n);
+    const size_t c = column(fine, n);
     double err_fine = 0.0, err_extrapolated = 0.0;
     for (size_t i = 5; i <= 100; ++i) {
       const double t = 0.01 * static_cast<double>(i), y_ref = at_time(ref, n, t);

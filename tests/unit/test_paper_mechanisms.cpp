@@ -29,10 +29,9 @@ TEST(SliderCrank, SecondOrderConvergenceInThetaAndMultiplierFig3) {
   const double th_ref = at_time(ref, "theta1", 1.0), f_ref = at_time(ref, "pivot_fx", 1.0);
   std::vector<double> hs{2e-3, 1e-3, 5e-4, 2.5e-4}, e_th, e_f;
   for (double h : hs) {
-    Scene sc = read_scene(source_path("inputs/slider_crank.yaml"), {h_is(h)});
     const RunSummary r = run_scene(kSlider, {h_is(h)});
-    e_th.push_back(std::fabs(final_value(sc, r, "theta1") - th_ref) / std::fabs(th_ref));
-    e_f.push_back(std::fabs(final_value(sc, r, "pivot_fx") - f_ref) / std::fabs(f_ref));
+    e_th.push_back(std::fabs(final_value(r, "theta1") - th_ref) / std::fabs(th_ref));
+    e_f.push_back(std::fabs(final_value(r, "pivot_fx") - f_ref) / std::fabs(f_ref));
   }
   const double p_th = fitted_slope(hs, e_th), p_f = fitted_slope(hs, e_f);
   RecordProperty("slope_theta1", std::to_string(p_th));
@@ -51,12 +50,7 @@ TEST(SliderCrank, SecondOrderConvergenceInThetaAndMultiplierFig3) {
 TEST(SliderCrank, HistoryMatchesIndependentReferenceAtH1e3) {
   const auto ref = read_csv(source_path("tests/reference/slider_crank.csv"));
   const RunSummary r = run_scene(kSlider, {"solver.h=1e-3"});
-  Scene sc = read_scene(source_path("inputs/slider_crank.yaml"));
-  size_t i_th = 0, i_x4 = 0;
-  for (size_t i = 0; i < sc.model->sensors().size(); ++i) {
-    if (sc.model->sensors()[i].name == "theta1") i_th = i;
-    if (sc.model->sensors()[i].name == "x4") i_x4 = i;
-  }
+  const size_t i_th = column(r, "theta1"), i_x4 = column(r, "x4");
   double worst_th = 0.0, worst_x4 = 0.0;
   for (size_t k = 0; k < r.times_out.size(); k += 10) {
     const double t = r.times_out[k];
@@ -75,10 +69,9 @@ TEST(SliderCrank, NewtonCriterionKeepsSecondOrderAtSmallH) {
   const double th_ref = at_time(ref, "theta1", 0.3), f_ref = at_time(ref, "pivot_fx", 0.3);
   std::vector<double> hs{2e-4, 1e-4, 5e-5}, e_th, e_f;
   for (double h : hs) {
-    Scene sc = read_scene(source_path("inputs/slider_crank.yaml"), {h_is(h), "solver.t_end=0.3"});
     const RunSummary r = run_scene(kSlider, {h_is(h), "solver.t_end=0.3"});
-    e_th.push_back(std::fabs(final_value(sc, r, "theta1") - th_ref));
-    e_f.push_back(std::fabs(final_value(sc, r, "pivot_fx") - f_ref));
+    e_th.push_back(std::fabs(final_value(r, "theta1") - th_ref));
+    e_f.push_back(std::fabs(final_value(r, "pivot_fx") - f_ref));
   }
   EXPECT_NEAR(fitted_slope(hs, e_th), 2.0, 0.2);
   EXPECT_NEAR(fitted_slope(hs, e_f), 2.0, 0.2);
@@ -101,9 +94,8 @@ TEST(SliderCrank, HhtPresetIsSecondOrder) {
   const double th_ref = at_time(ref, "theta1", 1.0);
   std::vector<double> hs{1e-3, 5e-4, 2.5e-4}, e;
   for (double h : hs) {
-    Scene sc = read_scene(source_path("inputs/slider_crank.yaml"), {h_is(h), "solver.scheme=hht", "solver.rho_inf=0.8"});
     const RunSummary r = run_scene(kSlider, {h_is(h), "solver.scheme=hht", "solver.rho_inf=0.8"});
-    e.push_back(std::fabs(final_value(sc, r, "theta1") - th_ref));
+    e.push_back(std::fabs(final_value(r, "theta1") - th_ref));
   }
   EXPECT_NEAR(fitted_slope(hs, e), 2.0, 0.2);
 }
@@ -139,14 +131,9 @@ const char* kAndrews = "andrews";
 // (andrews.md §1.4): λ(0) = (98.5668703962410896, −6.12268834425566265), and P's acceleration
 // rr·β̈0·(−sin β0, cos β0) with β̈0 = 14222.4439199541138705911625887.
 TEST(Andrews, ConsistentStartMatchesTestSetInitialValues) {
-  Scene sc = read_scene(source_path("inputs/andrews.yaml"), {"solver.t_end=3e-4"});
   const RunSummary r = run_scene(kAndrews, {"solver.t_end=3e-4"});
   const auto& h0 = r.sensor_history.front();
-  auto col = [&](const std::string& n) {
-    for (size_t i = 0; i < sc.model->sensors().size(); ++i)
-      if (sc.model->sensors()[i].name == n) return h0[i];
-    return std::nan("");
-  };
+  auto col = [&](const std::string& n) { return h0[column(r, n)]; };
   EXPECT_NEAR(col("lambda1"), 98.5668703962410896, 1e-9 * 98.6);
   EXPECT_NEAR(col("lambda2"), -6.12268834425566265, 1e-9 * 98.6);
   const double b0 = -0.0617138900142764496, bdd = 14222.4439199541138705911625887, rr = 0.007;
@@ -161,10 +148,9 @@ TEST(Andrews, SecondOrderConvergenceInBetaAndMultiplierFig9) {
   const double b_ref = at_time(ref, "beta", 0.03), l_ref = at_time(ref, "lambda1", 0.03);
   std::vector<double> hs{1e-4, 5e-5, 2.5e-5}, e_b, e_l;
   for (double h : hs) {
-    Scene sc = read_scene(source_path("inputs/andrews.yaml"), {h_is(h)});
     const RunSummary r = run_scene(kAndrews, {h_is(h)});
-    e_b.push_back(std::fabs(final_value(sc, r, "beta") - b_ref) / std::fabs(b_ref));
-    e_l.push_back(std::fabs(final_value(sc, r, "lambda1") - l_ref) / std::fabs(l_ref));
+    e_b.push_back(std::fabs(final_value(r, "beta") - b_ref) / std::fabs(b_ref));
+    e_l.push_back(std::fabs(final_value(r, "lambda1") - l_ref) / std::fabs(l_ref));
   }
   const double p_b = fitted_slope(hs, e_b), p_l = fitted_slope(hs, e_l);
   EXPECT_GE(p_b, 1.8);
@@ -179,11 +165,10 @@ TEST(Andrews, SecondOrderConvergenceInBetaAndMultiplierFig9) {
 // 2.3e-6 rad, the O(h³) remainder), where the h = 1.25e-5 run alone is off by up to 2e-4 rad.
 TEST(Andrews, RichardsonExtrapolationMatchesPublishedTestSet) {
   const auto ref = read_csv(source_path("tests/reference/andrews_testset_t003.csv"));
-  Scene sc = read_scene(source_path("inputs/andrews.yaml"));
   const RunSummary coarse = run_scene(kAndrews, {"solver.h=2.5e-5"});
   const RunSummary fine = run_scene(kAndrews, {"solver.h=1.25e-5"});
   for (const char* n : {"beta", "Theta", "gamma", "Phi", "delta", "Omega", "epsilon"}) {
-    const double yc = final_value(sc, coarse, n), yf = final_value(sc, fine, n);
+    const double yc = final_value(coarse, n), yf = final_value(fine, n);
     const double extrapolated = (4.0 * yf - yc) / 3.0;
     EXPECT_NEAR(extrapolated, ref.at(n).at(0), 1e-5) << n;
   }

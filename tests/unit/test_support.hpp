@@ -27,13 +27,15 @@ inline RunSummary run_scene(const std::string& scene, const std::vector<std::str
   return run_simulation(s, opt, PETSC_COMM_WORLD);
 }
 
-/// Value of sensor `name` at the final time.
-inline double final_value(const Scene& scene, const RunSummary& r, const std::string& name) {
-  const auto& sensors = scene.model->sensors();
-  for (size_t i = 0; i < sensors.size(); ++i)
-    if (sensors[i].name == name) return r.final_sensors[i];
+/// Index of sensor `name` in a run's sensor rows.
+inline size_t column(const RunSummary& r, const std::string& name) {
+  for (size_t i = 0; i < r.sensor_names.size(); ++i)
+    if (r.sensor_names[i] == name) return i;
   throw std::runtime_error("no sensor " + name);
 }
+
+/// Value of sensor `name` at the final time.
+inline double final_value(const RunSummary& r, const std::string& name) { return r.final_sensors[column(r, name)]; }
 
 /// A CSV with a header row: column name → values.
 inline std::map<std::string, std::vector<double>> read_csv(const std::string& path) {

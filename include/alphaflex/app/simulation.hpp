@@ -27,6 +27,7 @@ struct RunSummary {
   double projection = 0.0;  ///< largest change of q0 by the consistent start
   PhaseTimes times;
   MechanicalState final_state;
+  std::vector<std::string> sensor_names;  ///< in scene order (the CSV header after t)
   std::vector<double> final_sensors;  ///< sensor values at the final time, in scene order
   std::vector<double> times_out;      ///< t of every step (including 0), if keep_history
   std::vector<std::vector<double>> sensor_history;  ///< [step][sensor], if keep_history
