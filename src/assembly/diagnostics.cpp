@@ -20,7 +20,7 @@ void for_each_jacobian_entry(const Model& m, const MechanicalState& s, F&& f) {
   for (size_t c = 0; c < m.constraints().size(); ++c) {
     const Constraint& con = *m.constraints()[c];
     const auto idx = m.dofs_of(con.nodes());
-    con.evaluate(gather(s.q, idx), s.t, phi, phi_q);
+    con.evaluate(gather(s.q, m.confs_of(con.nodes())), s.t, phi, phi_q);
     const int first = m.first_multiplier(static_cast<int>(c));
     for (int k = 0; k < con.size(); ++k)
       for (size_t j = 0; j < idx.size(); ++j) f(first + k, idx[j], phi_q(k, static_cast<Eigen::Index>(j)));
@@ -105,7 +105,7 @@ double constraint_violation(const Model& m, const MechanicalState& s) {
   Eigen::VectorXd phi;
   Eigen::MatrixXd phi_q;
   for (const auto& c : m.constraints()) {
-    c->evaluate(gather(s.q, m.dofs_of(c->nodes())), s.t, phi, phi_q);
+    c->evaluate(gather(s.q, m.confs_of(c->nodes())), s.t, phi, phi_q);
     if (phi.size()) viol = std::max(viol, phi.cwiseAbs().maxCoeff());
   }
   return viol;
@@ -142,7 +142,7 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
   LocalResidual lr;
   for (const auto& e : m.elements()) {
     const auto idx = m.dofs_of(e->nodes());
-    ls.q = gather(s.q, idx);
+    ls.q = gather(s.q, m.confs_of(e->nodes()));
     ls.v = gather(s.v, idx);
     ls.qdd = gather(s.qdd, idx);
     ls.t = s.t;

@@ -17,12 +17,27 @@ PetscErrorCode add_block(Mat S, const std::vector<int>& rows, const std::vector<
   PetscFunctionReturn(0);
 }
 
+/// A ← A·T(x) on the columns of each Lie-group node of `nodes` (x: the step increment).
+void apply_tangent_operator(const Model& m, const std::vector<int>& nodes, const Eigen::VectorXd& x,
+                            Eigen::MatrixXd& A) {
+  int off = 0;
+  for (int n : nodes) {
+    const Node& nd = m.node(n);
+    if (is_lie_group(nd.kind)) {
+      const Eigen::MatrixXd T = tangent_operator(nd.kind, x.data() + nd.first_dof);
+      A.middleCols(off, nd.ndof) = A.middleCols(off, nd.ndof) * T;
+    }
+    off += nd.ndof;
+  }
+}
+
 }  // namespace
 
 SaddlePointSystem::SaddlePointSystem(const Model& model, const DofMap& map, MPI_Comm comm)
     : model_(model), map_(map), comm_(comm) {
   for (const auto& e : model.elements()) {
     elem_dofs_.push_back(model.dofs_of(e->nodes()));
+    elem_confs_.push_back(model.confs_of(e->nodes()));
     std::vector<int> rows;
     for (int d : elem_dofs_.back()) rows.push_back(map.dof(d));
     elem_rows_.push_back(rows);
@@ -30,6 +45,7 @@ SaddlePointSystem::SaddlePointSystem(const Model& model, const DofMap& map, MPI_
   for (size_t c = 0; c < model.constraints().size(); ++c) {
     const auto& con = model.constraints()[c];
     con_dofs_.push_back(model.dofs_of(con->nodes()));
+    con_confs_.push_back(model.confs_of(con->nodes()));
     std::vector<int> rows, mults;
     for (int d : con_dofs_.back()) rows.push_back(map.dof(d));
     const int first = model.first_multiplier(static_cast<int>(c));
@@ -141,12 +157,14 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
     const auto& g = elem_rows_[e];
     const int n = static_cast<int>(idx.size());
     if (elements_in) {
-      ls.q = gather(s.q, idx);
+      ls.q = gather(s.q, elem_confs_[e]);
       ls.v = gather(s.v, idx);
       ls.qdd = gather(s.qdd, idx);
       ls.t = s.t;
+      ls.load_factor = c.load_factor;
       lr.reset(n, matrix);
       model_.elements()[e]->evaluate(ls, lr, matrix);
+      if (matrix && c.increment) apply_tangent_operator(model_, model_.elements()[e]->nodes(), *c.increment, lr.K);
       const Eigen::VectorXd re = sc * lr.r;
       PetscCall(VecSetValues(r_, n, g.data(), re.data(), ADD_VALUES));
     }
@@ -165,7 +183,7 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
     const Constraint& con = *model_.constraints()[k];
     const auto& idx = con_dofs_[k];
     const int n = static_cast<int>(idx.size()), m = con.size();
-    const Eigen::VectorXd q = gather(s.q, idx);
+    const Eigen::VectorXd q = gather(s.q, con_confs_[k]);
     const Eigen::VectorXd lam = s.lambda.segment(model_.first_multiplier(static_cast<int>(k)), m);
     con.evaluate(q, s.t, phi, phi_q);
 
@@ -191,11 +209,14 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
       RowMajor kblock = RowMajor::Zero(n, n);
       if (c.stiffness != 0.0 && elements_in) {
         con.geometric_stiffness(q, s.t, lam, kc);
+        if (c.increment) apply_tangent_operator(model_, con.nodes(), *c.increment, kc);
         kblock = sc * c.stiffness * kc;
       }
       PetscCall(add_block(S_, con_rows_[k], con_rows_[k], kblock));
+      // ∂(Φ_qᵀλ)/∂λ = Φ_qᵀ; but ∂Φ(q_n ∘ exp(x))/∂x = Φ_q T(x) in the multiplier rows.
       const RowMajor bt = sc * c.multiplier_scale * phi_q.transpose();
       PetscCall(add_block(S_, con_rows_[k], con_mults_[k], bt));
+      if (c.increment && rows == ConstraintRows::Dynamic) apply_tangent_operator(model_, con.nodes(), *c.increment, phi_q);
       const RowMajor b = phi_q;
       PetscCall(add_block(S_, con_mults_[k], con_rows_[k], b));
       // Explicit zeros on the multiplier diagonal keep it in the pattern (some factorizations want it).

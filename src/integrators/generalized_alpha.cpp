@@ -126,7 +126,7 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
     ModelVector r;
     for (int it = 0; it < 50; ++it) {
       const ModelVector x = solve_linear(s, proj, ConstraintRows::Position, nullptr);
-      s.q -= x.dofs;
+      m.retract(s.q, -x.dofs);
       if (inf_norm(x.dofs) <= 1e-14 * std::max(1.0, inf_norm(s.q))) break;
     }
     check_petsc(sys_.assemble(s, proj, ConstraintRows::Position, false), "assembly");
@@ -153,22 +153,34 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   s.qdd = -x.dofs;
   s.lambda = -x.multipliers;
   a_ = s.qdd;  // a_0 = q̈_0 (eq. 3)
-  return inf_norm(s.q - q_in);
+  return inf_norm(m.difference(q_in, s.q));
 }
 
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
+  const Model& model = sys_.model();
   const double am = p_.alpha_m, af = p_.alpha_f, beta = p_.beta, gamma = p_.gamma;
   const double beta_p = (1.0 - am) / (h * h * beta * (1.0 - af));  // eq. (6)
   const double gamma_p = gamma / (h * beta);
 
-  // Predictor (Algorithm 1).
+  // Lie-group form (Brüls, Cardona & Arnold 2012, Algorithm 1 there): q_{n+1} = q_n ∘ exp(x) with
+  // x = hΔq_n = h v_n + h²(1/2 − β) a_n + h²β a_{n+1}; every change dx of x moves q through
+  // Model::advance, which on vector spaces is q += dx — Algorithm 1 of Arnold & Brüls (2007)
+  // operation by operation, so planar models give the same bits through this path.
+  const Eigen::VectorXd q_n = s.q;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(s.v.size());
   MechanicalState n1 = s;
   n1.t = s.t + h;
-  n1.q = s.q + h * s.v + h * h * (0.5 - beta) * a_;
+  auto move = [&](const Eigen::VectorXd& dx) {
+    x += dx;
+    model.advance(q_n, x, dx, n1.q);
+  };
+  // Predictor.
+  move(h * s.v);
+  move(h * h * (0.5 - beta) * a_);
   n1.v = s.v + h * (1.0 - gamma) * a_;
   n1.lambda.setZero();
   const Eigen::VectorXd a_pred = (af * s.qdd - am * a_) / (1.0 - am);
-  n1.q += h * h * beta * a_pred;
+  move(h * h * beta * a_pred);
   n1.v += h * gamma * a_pred;
   n1.qdd.setZero();
 
@@ -176,6 +188,7 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
   c.mass = beta_p;
   c.damping = gamma_p;
   c.stiffness = 1.0;
+  if (model.has_lie_group_nodes()) c.increment = &x;  // S_t = M β' + C γ' + K T(x) (eq. 48 there)
   if (opt_.scaling) {
     c.row_scale = beta * h * h;
     c.multiplier_scale = 1.0 / (beta * h * h);
@@ -189,7 +202,7 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
     const ModelVector x = solve_linear(n1, c, ConstraintRows::Dynamic, &r);
     const Eigen::VectorXd dq = -x.dofs;
     const Eigen::VectorXd dl = -c.multiplier_scale * x.multipliers;
-    n1.q += dq;
+    move(dq);
     n1.v += gamma_p * dq;
     n1.qdd += beta_p * dq;
     n1.lambda += dl;

@@ -82,7 +82,8 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   for (size_t i = 0; i < nn; ++i) {
     const Node& n = model_.nodes()[i];
     const PlanarMarker m = PlanarMarker::on_node(n, Eigen::Vector2d::Zero(), 0);
-    const Eigen::VectorXd q = s.q.segment(n.first_dof, n.ndof), v = s.v.segment(n.first_dof, n.ndof);
+    if (n.spatial()) continue;  // TODO(spatial output)
+    const Eigen::VectorXd q = s.q.segment(n.first_conf, n.nconf), v = s.v.segment(n.first_dof, n.ndof);
     const Eigen::VectorXd a = s.qdd.segment(n.first_dof, n.ndof);
     const Eigen::Vector2d p = m.position(q), pv = m.velocity(q, v);
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2, n.ndof);
@@ -101,7 +102,7 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   std::vector<double> jloc(3 * nj, 0.0), jforce(3 * nj, 0.0), jmoment(3 * nj, 0.0);
   for (size_t c = 0; c < nj; ++c) {
     const Constraint& con = *model_.constraints()[c];
-    const JointReaction r = con.reaction(gather(s.q, model_.dofs_of(con.nodes())), s.t,
+    const JointReaction r = con.reaction(gather(s.q, model_.confs_of(con.nodes())), s.t,
                                          s.lambda.segment(model_.first_multiplier(static_cast<int>(c)), con.size()));
     for (int k = 0; k < 3; ++k) {
       jloc[3 * c + k] = r.location[k];

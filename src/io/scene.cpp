@@ -532,10 +532,12 @@ void read_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& m
                 : type == "point_acceleration" ? Sensor::Kind::PointAcceleration
                                                : Sensor::Kind::PointDisplacement;
       sn.node = sb.body(s, "body", path, false);
-      sn.local = rd.vec2(s, "point", path, Eigen::Vector2d::Zero());
-      sb.marker(sn.node, sn.local, {sn.node}, s, path + ".point");
+      const Eigen::Vector2d local = rd.vec2(s, "point", path, Eigen::Vector2d::Zero());
+      sn.local = Eigen::Vector3d(local.x(), local.y(), 0.0);
+      sb.marker(sn.node, local, {sn.node}, s, path + ".point");
       sn.component = component({"x", "y"});
-      sn.initial = sb.initial_position(sn.node, sn.local);
+      const Eigen::Vector2d p0 = sb.initial_position(sn.node, local);
+      sn.initial = Eigen::Vector3d(p0.x(), p0.y(), 0.0);
     } else if (type == "joint_reaction") {
       rd.keys(s, path, {"name", "type", "joint", "component"});
       sn.kind = Sensor::Kind::JointReaction;
@@ -543,6 +545,7 @@ void read_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& m
       sn.constraint = model.find_constraint(jn);
       if (sn.constraint < 0) rd.fail(s["joint"], path + ".joint", "no joint named '" + jn + "'");
       sn.component = component({"fx", "fy", "mz"});
+      if (sn.component == 2) sn.component = 5;  // mz
     } else {
       rd.fail(s["type"], path + ".type",
               "unknown sensor type '" + type +

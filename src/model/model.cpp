@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "alphaflex/core/rotation.hpp"
+
 namespace alphaflex {
 
 void LocalResidual::reset(int n, bool tangent) {
@@ -19,10 +21,14 @@ void Constraint::time_derivative(const Eigen::VectorXd&, double, Eigen::VectorXd
 
 int Model::add_node(Node node) {
   node.ndof = Node::dofs_of(node.kind);
-  if (node.q0.size() != node.ndof || node.v0.size() != node.ndof)
+  node.nconf = Node::confs_of(node.kind);
+  if (node.q0.size() != node.nconf || node.v0.size() != node.ndof)
     throw std::invalid_argument("node '" + node.name + "': initial state has the wrong size");
   node.first_dof = num_dofs_;
+  node.first_conf = num_conf_;
   num_dofs_ += node.ndof;
+  num_conf_ += node.nconf;
+  lie_nodes_ = lie_nodes_ || is_lie_group(node.kind);
   nodes_.push_back(std::move(node));
   return static_cast<int>(nodes_.size()) - 1;
 }
@@ -56,6 +62,49 @@ std::vector<int> Model::dofs_of(const std::vector<int>& nodes) const {
   return idx;
 }
 
+std::vector<int> Model::confs_of(const std::vector<int>& nodes) const {
+  std::vector<int> idx;
+  for (int n : nodes) {
+    const Node& nd = node(n);
+    for (int k = 0; k < nd.nconf; ++k) idx.push_back(nd.first_conf + k);
+  }
+  return idx;
+}
+
+void Model::retract(Eigen::VectorXd& q, const Eigen::VectorXd& dx) const {
+  for (const Node& n : nodes_) alphaflex::retract(n.kind, q.data() + n.first_conf, dx.data() + n.first_dof, q.data() + n.first_conf);
+}
+
+void Model::advance(const Eigen::VectorXd& q_n, const Eigen::VectorXd& x, const Eigen::VectorXd& dx,
+                    Eigen::VectorXd& q) const {
+  if (!lie_nodes_) {
+    q += dx;  // all vector spaces: exactly Algorithm 1
+    return;
+  }
+  for (const Node& n : nodes_) {
+    if (is_lie_group(n.kind))
+      alphaflex::retract(n.kind, q_n.data() + n.first_conf, x.data() + n.first_dof, q.data() + n.first_conf);
+    else
+      q.segment(n.first_conf, n.nconf) += dx.segment(n.first_dof, n.ndof);
+  }
+}
+
+Eigen::VectorXd Model::difference(const Eigen::VectorXd& q_from, const Eigen::VectorXd& q_to) const {
+  Eigen::VectorXd d(num_dofs_);
+  for (const Node& n : nodes_) {
+    if (n.kind == NodeKind::Frame3D) {
+      const double* a = q_from.data() + n.first_conf;
+      const double* b = q_to.data() + n.first_conf;
+      for (int k = 0; k < 3; ++k) d[n.first_dof + k] = b[k] - a[k];
+      const Eigen::Quaterniond qa(a[3], a[4], a[5], a[6]), qb(b[3], b[4], b[5], b[6]);
+      d.segment<3>(n.first_dof + 3) = quaternion_log(qa.conjugate() * qb);
+    } else {
+      d.segment(n.first_dof, n.ndof) = q_to.segment(n.first_conf, n.nconf) - q_from.segment(n.first_conf, n.nconf);
+    }
+  }
+  return d;
+}
+
 int Model::local_offset(const std::vector<int>& nodes, int n) const {
   int off = 0;
   for (int m : nodes) {
@@ -67,12 +116,12 @@ int Model::local_offset(const std::vector<int>& nodes, int n) const {
 
 MechanicalState Model::initial_state() const {
   MechanicalState s;
-  s.q = Eigen::VectorXd::Zero(num_dofs_);
+  s.q = Eigen::VectorXd::Zero(num_conf_);
   s.v = Eigen::VectorXd::Zero(num_dofs_);
   s.qdd = Eigen::VectorXd::Zero(num_dofs_);
   s.lambda = Eigen::VectorXd::Zero(num_multipliers_);
   for (const Node& n : nodes_) {
-    s.q.segment(n.first_dof, n.ndof) = n.q0;
+    s.q.segment(n.first_conf, n.nconf) = n.q0;
     s.v.segment(n.first_dof, n.ndof) = n.v0;
   }
   return s;

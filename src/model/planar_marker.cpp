@@ -12,6 +12,8 @@ PlanarMarker PlanarMarker::ground(const Eigen::Vector2d& point) {
 }
 
 PlanarMarker PlanarMarker::on_node(const Node& node, const Eigen::Vector2d& local, int offset) {
+  if (node.spatial())
+    throw std::invalid_argument("'" + node.name + "' is a spatial node; planar joints and forces need planar bodies");
   PlanarMarker m;
   m.kind_ = node.kind;
   m.ndof_ = node.ndof;
@@ -35,6 +37,7 @@ Eigen::Vector2d PlanarMarker::position(const Eigen::VectorXd& q) const {
     case NodeKind::RigidBody2D: return Eigen::Vector2d(q[offset_], q[offset_ + 1]) + rotate(q[offset_ + 2], local_);
     case NodeKind::Particle2D: return {q[offset_], q[offset_ + 1]};
     case NodeKind::LineParticle2D: return origin_ + q[offset_] * direction_;
+    case NodeKind::Frame3D: break;
   }
   return origin_;
 }
@@ -46,6 +49,7 @@ Eigen::Vector2d PlanarMarker::velocity(const Eigen::VectorXd& q, const Eigen::Ve
       return Eigen::Vector2d(v[offset_], v[offset_ + 1]) + v[offset_ + 2] * perp(rotate(q[offset_ + 2], local_));
     case NodeKind::Particle2D: return {v[offset_], v[offset_ + 1]};
     case NodeKind::LineParticle2D: return v[offset_] * direction_;
+    case NodeKind::Frame3D: break;
   }
   return Eigen::Vector2d::Zero();
 }
@@ -69,6 +73,7 @@ void PlanarMarker::add_jacobian(const Eigen::VectorXd& q, double sign, Eigen::Ma
       J(1, offset_ + 1) += sign;
       break;
     case NodeKind::LineParticle2D: J.col(offset_) += sign * direction_; break;
+    case NodeKind::Frame3D: break;  // refused by on_node
   }
 }
 

@@ -1,11 +1,28 @@
 #include "alphaflex/model/sensor.hpp"
 
+#include "alphaflex/core/rotation.hpp"
 #include "alphaflex/model/model.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
 
 namespace alphaflex {
+namespace {
+
+/// Position, velocity or acceleration (which = 0, 1, 2) of point s of a spatial frame:
+/// p = x + R s, ṗ = ẋ + R (Ω × s), p̈ = ẍ + R (Ω̇ × s + Ω × (Ω × s)).
+Eigen::Vector3d spatial_point(const Model& m, const MechanicalState& st, int node, const Eigen::Vector3d& s, int which) {
+  const Node& nd = m.node(node);
+  const Pose<double> p = pose_of(st.q.data() + nd.first_conf);
+  const Eigen::Vector3d W = st.v.segment<3>(nd.first_dof + 3);
+  if (which == 0) return p.x + p.R * s;
+  if (which == 1) return st.v.segment<3>(nd.first_dof) + p.R * W.cross(s);
+  const Eigen::Vector3d Wd = st.qdd.segment<3>(nd.first_dof + 3);
+  return st.qdd.segment<3>(nd.first_dof) + p.R * (Wd.cross(s) + W.cross(W.cross(s)));
+}
+
+}  // namespace
 
 double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
-  auto angle_of = [&](int n) { return s.q[model.node(n).first_dof + 2]; };
+  auto angle_of = [&](int n) { return s.q[model.node(n).first_conf + 2]; };
   switch (kind) {
     case Kind::BodyAngle: return angle_of(node);
     case Kind::RelativeAngle: return angle_of(node) - angle_of(node2);
@@ -14,8 +31,22 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
     case Kind::PointVelocity:
     case Kind::PointAcceleration: {
       const Node& nd = model.node(node);
-      const PlanarMarker m = PlanarMarker::on_node(nd, local, 0);
-      const Eigen::VectorXd q = s.q.segment(nd.first_dof, nd.ndof);
+      if (nd.spatial()) {
+        const int which = kind == Kind::PointVelocity ? 1 : kind == Kind::PointAcceleration ? 2 : 0;
+        Eigen::Vector3d p = spatial_point(model, s, node, local, which);
+        if (kind == Kind::PointDisplacement) p -= initial;
+        if (frame_node >= 0) {
+          // Components in a moving frame (e.g. tip deflection seen from a spinning hub).
+          const Node& fn = model.node(frame_node);
+          const Pose<double> f = pose_of(s.q.data() + fn.first_conf);
+          if (kind == Kind::PointPosition) p = f.R.transpose() * (p - f.x);
+          else if (kind == Kind::PointDisplacement) p = f.R.transpose() * (p + initial - f.x) - initial;
+          else p = f.R.transpose() * p;
+        }
+        return p[component];
+      }
+      const PlanarMarker m = PlanarMarker::on_node(nd, local.head<2>(), 0);
+      const Eigen::VectorXd q = s.q.segment(nd.first_conf, nd.nconf);
       const Eigen::VectorXd v = s.v.segment(nd.first_dof, nd.ndof);
       if (kind == Kind::PointVelocity) return m.velocity(q, v)[component];
       if (kind == Kind::PointAcceleration) {
@@ -27,14 +58,29 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
       const Eigen::Vector2d p = m.position(q);
       return kind == Kind::PointPosition ? p[component] : p[component] - initial[component];
     }
+    case Kind::BodyRotation: {
+      const Node& nd = model.node(node);
+      const Pose<double> p = pose_of(s.q.data() + nd.first_conf);
+      return log_so3<double>(p.R)[component];
+    }
     case Kind::JointReaction: {
       const Constraint& c = *model.constraints()[static_cast<size_t>(constraint)];
-      const std::vector<int> dofs = model.dofs_of(c.nodes());
-      const JointReaction r = c.reaction(gather(s.q, dofs), s.t,
+      const JointReaction r = c.reaction(gather(s.q, model.confs_of(c.nodes())), s.t,
                                          s.lambda.segment(model.first_multiplier(constraint), c.size()));
-      if (component == 0) return r.force.x();
-      if (component == 1) return r.force.y();
-      return r.moment.z();
+      const Eigen::Vector3d v = r.frame.transpose() * (component < 3 ? r.force : r.moment);
+      return v[component % 3];
+    }
+    case Kind::ElementOutput: {
+      const Element& e = *model.elements()[static_cast<size_t>(element)];
+      LocalState ls;
+      const auto idx = model.dofs_of(e.nodes());
+      ls.q = gather(s.q, model.confs_of(e.nodes()));
+      ls.v = gather(s.v, idx);
+      ls.qdd = gather(s.qdd, idx);
+      ls.t = s.t;
+      Eigen::VectorXd values;
+      e.output(ls, values);
+      return values[component];
     }
   }
   return 0.0;

@@ -23,6 +23,12 @@ struct AssemblyCoefficients {
   double mass = 0.0, damping = 0.0, stiffness = 0.0, identity = 0.0;
   double row_scale = 1.0;         ///< s: multiplies every dynamic row (Bottasso scaling: βh²)
   double multiplier_scale = 1.0;  ///< μ: Δλ = μ × (solution component); Bottasso: 1/(βh²)
+  /// Lie-group step (Brüls, Cardona & Arnold 2012): the increment x = hΔq of the step in model
+  /// order. When set, the position derivatives K + K_Φ and Φ_q are multiplied on the right by the
+  /// tangent operator T(x) of each group node, since q_{n+1} = q_n ∘ exp(x). Identity on vector
+  /// spaces, where nothing is done.
+  const Eigen::VectorXd* increment = nullptr;
+  double load_factor = 1.0;       ///< passed to the elements (quasi-static load stepping)
 };
 
 /// What the multiplier rows of the residual contain (and whether element residuals are added).
@@ -74,6 +80,7 @@ class SaddlePointSystem {
   VecScatter to_all_ = nullptr;
   // Cached per element / joint: model-order unknowns and their global indices.
   std::vector<std::vector<int>> elem_dofs_, elem_rows_, con_dofs_, con_rows_, con_mults_;
+  std::vector<std::vector<int>> elem_confs_, con_confs_;  // configuration indices
 };
 
 }  // namespace alphaflex

@@ -8,11 +8,13 @@
 namespace alphaflex {
 
 /// The load a joint exerts on its first body, in the world frame: force, and moment about the
-/// joint point (planar joints use force.x, force.y and moment.z).
+/// joint point (planar joints use force.x, force.y and moment.z). `frame` holds the joint frame's
+/// axes as columns (world components), so that frameᵀ force is the force in the joint frame.
 struct JointReaction {
   Eigen::Vector3d location = Eigen::Vector3d::Zero();
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
 };
 
 class Constraint {

@@ -13,8 +13,11 @@ namespace alphaflex {
 
 /// Coordinates, velocities and accelerations of an element's nodes, concatenated in node order.
 struct LocalState {
-  Eigen::VectorXd q, v, qdd;
+  Eigen::VectorXd q, v, qdd;  ///< configuration (nconf per node), velocities and accelerations (ndof)
   double t = 0.0;
+  /// Multiplies every applied load (forces, moments, gravity): 1 in dynamics, stepped from 0 to 1
+  /// by the quasi-static analysis.
+  double load_factor = 1.0;
 };
 
 struct LocalResidual {
@@ -35,6 +38,12 @@ class Element {
 
   /// Adds this element's r (and K, C, M if `tangent`) into `out`, which the caller has reset.
   virtual void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const = 0;
+
+  /// Names of the element's result fields (a beam: section forces and strains), for sensors and
+  /// the HDF5/XDMF cell data; empty if it has none.
+  virtual std::vector<std::string> output_names() const { return {}; }
+  /// Their values at state `s` (one per name).
+  virtual void output(const LocalState& /*s*/, Eigen::VectorXd& values) const { values.resize(0); }
 
  private:
   std::string name_;

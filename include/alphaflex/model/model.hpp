@@ -30,6 +30,10 @@ class Model {
   const std::vector<Sensor>& sensors() const { return sensors_; }
 
   int num_dofs() const { return num_dofs_; }
+  /// Stored configuration numbers (≥ num_dofs(): 7 per spatial frame).
+  int num_conf() const { return num_conf_; }
+  /// True if some node lives on a Lie group (spatial frames).
+  bool has_lie_group_nodes() const { return lie_nodes_; }
   int num_multipliers() const { return num_multipliers_; }
   /// Index of constraint c's first multiplier in model order.
   int first_multiplier(int c) const { return first_multiplier_.at(static_cast<size_t>(c)); }
@@ -39,11 +43,24 @@ class Model {
 
   /// Model-order unknown indices of a node list (an element's or a constraint's local vector).
   std::vector<int> dofs_of(const std::vector<int>& nodes) const;
+  /// Model-order configuration indices of a node list (what an element's LocalState::q holds).
+  std::vector<int> confs_of(const std::vector<int>& nodes) const;
   /// Offset of node `n` inside the local vector of `nodes`.
   int local_offset(const std::vector<int>& nodes, int n) const;
 
   /// Initial state from the nodes' q0, v0 (accelerations and multipliers zero).
   MechanicalState initial_state() const;
+
+  /// q ← q ∘ exp(dx), node by node (q += dx on vector spaces).
+  void retract(Eigen::VectorXd& q, const Eigen::VectorXd& dx) const;
+  /// One Newton update of the Lie-group generalized-α (Brüls, Cardona & Arnold 2012): `x` is the
+  /// increment hΔq of the step (already including dx). Vector-space nodes: q += dx, so that they
+  /// follow Algorithm 1 of Arnold & Brüls operation by operation; group nodes: q = q_n ∘ exp(x),
+  /// recomputed from the start of the step so that round-off does not accumulate.
+  void advance(const Eigen::VectorXd& q_n, const Eigen::VectorXd& x, const Eigen::VectorXd& dx,
+               Eigen::VectorXd& q) const;
+  /// The inverse of retract on each node: dx with q_to = q_from ∘ exp(dx) (log on SO(3)).
+  Eigen::VectorXd difference(const Eigen::VectorXd& q_from, const Eigen::VectorXd& q_to) const;
 
  private:
   std::vector<Node> nodes_;
@@ -52,7 +69,9 @@ class Model {
   std::vector<Sensor> sensors_;
   std::vector<int> first_multiplier_;
   int num_dofs_ = 0;
+  int num_conf_ = 0;
   int num_multipliers_ = 0;
+  bool lie_nodes_ = false;
 };
 
 /// Gathers the entries `idx` of a global vector into a local one.

@@ -11,14 +11,19 @@ class Model;
 
 struct Sensor {
   enum class Kind { BodyAngle, RelativeAngle, PointPosition, PointDisplacement, PointVelocity,
-                    PointAcceleration, JointReaction };
+                    PointAcceleration, JointReaction, BodyRotation, ElementOutput };
   std::string name;
   Kind kind = Kind::BodyAngle;
   int node = -1, node2 = -1;          ///< bodies (angle sensors); node of the marker
-  Eigen::Vector2d local{0.0, 0.0};    ///< marker point in the body frame
-  int component = 0;                  ///< 0 = x, 1 = y (points); fx, fy, mz = 0, 1, 2 (joints)
+  Eigen::Vector3d local = Eigen::Vector3d::Zero();  ///< marker point in the body frame (planar: x, y)
+  /// Points: 0, 1, 2 = x, y, z. Joints: fx, fy, fz, mx, my, mz = 0…5 in the joint frame.
+  /// Body rotation: rotation-vector component. Element outputs: index into output_names().
+  int component = 0;
   int constraint = -1;                ///< joint index (JointReaction)
-  Eigen::Vector2d initial{0.0, 0.0};  ///< initial point position (PointDisplacement)
+  int element = -1;                   ///< element index (ElementOutput)
+  /// Spatial points: components in the frame of this node, relative to its origin (−1: world).
+  int frame_node = -1;
+  Eigen::Vector3d initial = Eigen::Vector3d::Zero();  ///< initial point position (PointDisplacement)
 
   double evaluate(const Model& model, const MechanicalState& s) const;
 };

@@ -6,7 +6,9 @@ namespace alphaflex {
 
 struct MechanicalState {
   double t = 0.0;
-  Eigen::VectorXd q, v, qdd;  ///< coordinates, velocities q̇, accelerations q̈
+  /// Configuration (nconf per node: coordinates, or position + unit quaternion for spatial
+  /// frames), velocities and accelerations (ndof per node: q̇, or (ẋ, Ω) in the Lie algebra).
+  Eigen::VectorXd q, v, qdd;
   Eigen::VectorXd lambda;     ///< Lagrange multipliers
 };
 

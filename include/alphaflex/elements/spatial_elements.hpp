@@ -1,0 +1,51 @@
+#pragma once
+// Spatial rigid bodies and applied loads on frames of R³×SO(3) (node.hpp). Unknowns per node:
+// δx (world frame) and δθ (body frame); velocities ẋ and Ω (body angular velocity).
+#include <array>
+
+#include "alphaflex/core/time_function.hpp"
+#include "alphaflex/model/element.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
+
+namespace alphaflex {
+
+/// Newton–Euler equations of a rigid body about its centre of mass (the node):
+///   r = [ m (ẍ − g) ;  J Ω̇ + Ω × J Ω ]   (Brüls, Cardona & Arnold 2012, eq. 56)
+/// with the inertia tensor J in the body frame. M = diag(m I, J), C = [0; Ω̂J − (JΩ)^], K = 0.
+class RigidBody3D final : public Element {
+ public:
+  RigidBody3D(std::string name, int node, double mass, const Eigen::Matrix3d& inertia, const Eigen::Vector3d& gravity);
+  const char* type() const override { return "rigid_body"; }
+  void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  double mass() const { return m_; }
+  const Eigen::Matrix3d& inertia() const { return j_; }
+
+ private:
+  double m_;
+  Eigen::Matrix3d j_;
+  Eigen::Vector3d g_;
+};
+
+/// A force applied at a point of a frame (position `point` in the node frame) and a moment, each
+/// component a time function (N, N·m), either fixed in the world (dead load) or turning with the
+/// node (follower load, components in the node frame). r = −(generalized force) × load factor;
+/// K is the exact derivative (non-zero for a dead force at an offset point and for a dead moment,
+/// whose generalized moment Rᵀ M turns with the body).
+class SpatialLoad final : public Element {
+ public:
+  SpatialLoad(std::string name, int node, const Eigen::Vector3d& point, std::array<TimeFunctionPtr, 3> force,
+              std::array<TimeFunctionPtr, 3> moment, bool follower);
+  const char* type() const override { return "load"; }
+  void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+
+  template <class S>
+  void operator()(const Pose<S>* frames, const S& t, KernelVector<S>& out) const;
+
+ private:
+  Eigen::Vector3d point_;
+  std::array<TimeFunctionPtr, 3> force_, moment_;
+  bool follower_;
+  mutable double factor_ = 1.0;  // load factor of the current evaluation
+};
+
+}  // namespace alphaflex

@@ -1,0 +1,60 @@
+#include "alphaflex/elements/spatial_elements.hpp"
+
+#include "alphaflex/core/rotation.hpp"
+
+namespace alphaflex {
+
+RigidBody3D::RigidBody3D(std::string name, int node, double mass, const Eigen::Matrix3d& inertia,
+                         const Eigen::Vector3d& gravity)
+    : Element(std::move(name), {node}), m_(mass), j_(inertia), g_(gravity) {}
+
+void RigidBody3D::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+  const Eigen::Vector3d W = s.v.segment<3>(3);
+  const Eigen::Vector3d JW = j_ * W;
+  out.r.segment<3>(0) += m_ * (s.qdd.segment<3>(0) - s.load_factor * g_);
+  out.r.segment<3>(3) += j_ * s.qdd.segment<3>(3) + W.cross(JW);
+  if (tangent) {
+    out.M.block<3, 3>(0, 0) += m_ * Eigen::Matrix3d::Identity();
+    out.M.block<3, 3>(3, 3) += j_;
+    out.C.block<3, 3>(3, 3) += hat<double>(W) * j_ - hat<double>(JW);
+  }
+}
+
+SpatialLoad::SpatialLoad(std::string name, int node, const Eigen::Vector3d& point, std::array<TimeFunctionPtr, 3> force,
+                         std::array<TimeFunctionPtr, 3> moment, bool follower)
+    : Element(std::move(name), {node}), point_(point), force_(std::move(force)), moment_(std::move(moment)),
+      follower_(follower) {}
+
+template <class S>
+void SpatialLoad::operator()(const Pose<S>* frames, const S& t, KernelVector<S>& out) const {
+  const Pose<S>& f = frames[0];
+  const double tv = ad::value(t);
+  Vec3<S> F, M;
+  for (int i = 0; i < 3; ++i) {
+    F[i] = S(factor_ * (force_[i] ? force_[i]->value(tv) : 0.0));
+    M[i] = S(factor_ * (moment_[i] ? moment_[i]->value(tv) : 0.0));
+  }
+  // Generalized force: δW = F_w·(δx + R (δθ × s)) + M_w·(R δθ), F_w and M_w in the world frame.
+  const Vec3<S> Fw = follower_ ? Vec3<S>(f.R * F) : F;
+  const Vec3<S> Mb = follower_ ? M : Vec3<S>(f.R.transpose() * M);  // moment in body components
+  const Vec3<S> Fb = f.R.transpose() * Fw;
+  const Vec3<S> s = point_.cast<S>();
+  out.resize(6);
+  out.template segment<3>(0) = -Fw;
+  out.template segment<3>(3) = -(s.cross(Fb) + Mb);
+}
+
+void SpatialLoad::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+  factor_ = s.load_factor;
+  Eigen::VectorXd r;
+  Eigen::MatrixXd K;
+  if (tangent) {
+    kernel_jacobian(*this, s.q, s.t, r, K);
+    out.K += K;
+  } else {
+    kernel_value(*this, s.q, s.t, r);
+  }
+  out.r += r;
+}
+
+}  // namespace alphaflex
