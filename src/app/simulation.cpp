@@ -11,6 +11,7 @@
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/integrators/quasi_static.hpp"
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/partition/dof_map.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
@@ -61,7 +62,70 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, comm);
   if (!all_ok) throw InputError(err.empty() ? "cannot create the output files (see rank 0)" : err);
 
+  std::vector<double> values;
+  auto record = [&](const MechanicalState& st, bool fields) {
+    values = sensor_values(model, st);
+    if (opt.keep_history) {
+      sum.times_out.push_back(st.t);
+      sum.sensor_history.push_back(values);
+    }
+    const double t0 = MPI_Wtime();
+    if (writer) {
+      writer->write_sensors(st.t, values);
+      if (fields) writer->write_fields(st);
+    }
+    integrator.times().output += MPI_Wtime() - t0;
+  };
   MechanicalState s = model.initial_state();
+  if (rs.analysis == Analysis::Static || rs.initial_static) {
+    // Quasi-static load stepping (integrators/quasi_static.hpp): the whole analysis, or the
+    // pre-loaded equilibrium a dynamic run starts from.
+    const bool is_static = rs.analysis == Analysis::Static;
+    QuasiStatic qs(system, solver, rs.statics);
+    auto at_load = [&](const MechanicalState& st, double lf) {
+      MechanicalState c = st;
+      c.t = lf;  // the CSV's first column is the load factor in a static analysis
+      record(c, true);
+    };
+    if (is_static) at_load(s, 0.0);
+    StaticReport rep;
+    try {
+      rep = qs.solve(s, is_static ? std::function<void(const MechanicalState&, double)>(at_load)
+                                  : std::function<void(const MechanicalState&, double)>());
+    } catch (const SolverError& e) {
+      if (writer) writer->finish();
+      throw SolverError(std::string(is_static ? "static analysis: " : "initial static equilibrium: ") + e.what() +
+                        (writer && is_static ? "\n  The converged load steps are written to " + writer->xdmf_path() + "." : ""));
+    } catch (const InputError& e) {
+      if (writer) writer->finish();
+      throw InputError(scene.file + ": " + e.what());
+    }
+    sum.static_steps = rep.load_steps;
+    sum.static_cuts = rep.cuts;
+    sum.newton_total += rep.iterations;
+    sum.newton_max = std::max(sum.newton_max, rep.max_iterations);
+    integrator.times().assembly += qs.times().assembly;
+    integrator.times().factorization += qs.times().factorization;
+    integrator.times().solve += qs.times().solve;
+    if (is_static) {
+      sum.steps = rep.load_steps;
+      if (writer) {
+        writer->finish();
+        sum.csv = writer->csv_path();
+        if (rs.hdf5) {
+          sum.h5 = writer->h5_path();
+          sum.xdmf = writer->xdmf_path();
+        }
+      }
+      sum.final_state = s;
+      sum.final_sensors = values;
+      sum.times = integrator.times();
+      sum.factorizations = solver.numeric_count();
+      sum.symbolic_analyses = solver.symbolic_count();
+      sum.wall = MPI_Wtime() - wall0;
+      return sum;
+    }
+  }
   if (!rs.integrator.consistent_start) {
     const double viol = constraint_violation(model, s);
     if (viol > 1e-9 * std::max(1.0, s.q.cwiseAbs().maxCoeff()))
@@ -103,20 +167,6 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   if (opt.verbose && rank == 0)
     for (const auto& w : sum.warnings) std::cout << "  warning: " << w << std::endl;
 
-  std::vector<double> values;
-  auto record = [&](const MechanicalState& st, bool fields) {
-    values = sensor_values(model, st);
-    if (opt.keep_history) {
-      sum.times_out.push_back(st.t);
-      sum.sensor_history.push_back(values);
-    }
-    const double t0 = MPI_Wtime();
-    if (writer) {
-      writer->write_sensors(st.t, values);
-      if (fields) writer->write_fields(st);
-    }
-    integrator.times().output += MPI_Wtime() - t0;
-  };
   record(s, true);
   long last_written = 0;
 
@@ -170,8 +220,14 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   os << "summary of " << scene.name << "\n"
      << "  unknowns            " << s.unknowns << " (" << s.coordinates << " coordinates, " << s.multipliers
      << " multipliers)\n"
-     << "  steps               " << s.steps << " (h = " << scene.settings.h << " s, t_end = " << scene.settings.t_end
-     << " s)\n"
+     << (scene.settings.analysis == Analysis::Static ? "  load steps          " : "  steps               ") << s.steps;
+  if (scene.settings.analysis == Analysis::Static)
+    os << " (static, load factor 0 to " << scene.settings.load_factor << ", " << s.static_cuts << " step cuts)\n";
+  else
+    os << " (h = " << scene.settings.h << " s, t_end = " << scene.settings.t_end << " s)\n";
+  if (scene.settings.analysis != Analysis::Static && s.static_steps > 0)
+    os << "  initial statics     " << s.static_steps << " load steps, " << s.static_cuts << " step cuts\n";
+  os
      << "  Newton iterations   total " << s.newton_total << ", mean " << mean << " per step, max " << s.newton_max << "\n"
      << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n"
      << std::fixed << std::setprecision(3)

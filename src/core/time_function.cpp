@@ -59,6 +59,46 @@ class SmoothStep final : public TimeFunction {
   double t0_, t1_, v0_, v1_;
 };
 
+/// Angle of a hub spun up smoothly to the rate ω in time T (Simo & Vu-Quoc 1986):
+/// θ = ω/T [t²/2 + (T/2π)²(cos(2πt/T) − 1)] for t < T, ω(t − T/2) after; θ̇ and θ̈ continuous.
+class SpinUp final : public TimeFunction {
+ public:
+  SpinUp(double omega, double T) : w_(omega), T_(T) {}
+  double value(double t) const override {
+    if (t <= 0.0) return 0.0;
+    if (t >= T_) return w_ * (t - T_ / 2.0);
+    const double c = T_ / (2.0 * kPi);
+    return w_ / T_ * (t * t / 2.0 + c * c * (std::cos(t / c) - 1.0));
+  }
+  double derivative(double t) const override {
+    if (t <= 0.0) return 0.0;
+    if (t >= T_) return w_;
+    const double c = T_ / (2.0 * kPi);
+    return w_ / T_ * (t - c * std::sin(t / c));
+  }
+  double second_derivative(double t) const override {
+    if (t <= 0.0 || t >= T_) return 0.0;
+    const double c = T_ / (2.0 * kPi);
+    return w_ / T_ * (1.0 - std::cos(t / c));
+  }
+
+ private:
+  static constexpr double kPi = 3.14159265358979323846;
+  double w_, T_;
+};
+
+/// f(t) = offset + rate · t.
+class Linear final : public TimeFunction {
+ public:
+  Linear(double rate, double offset) : k_(rate), c_(offset) {}
+  double value(double t) const override { return c_ + k_ * t; }
+  double derivative(double) const override { return k_; }
+  double second_derivative(double) const override { return 0.0; }
+
+ private:
+  double k_, c_;
+};
+
 class Sine final : public TimeFunction {
  public:
   Sine(double a, double f, double p, double o) : a_(a), w_(2.0 * M_PI * f), p_(p), o_(o) {}
@@ -104,6 +144,11 @@ TimeFunctionPtr make_smooth_step(double t0, double t1, double v0, double v1) {
   if (!(t1 > t0)) throw std::invalid_argument("smooth_step needs t1 > t0");
   return std::make_shared<SmoothStep>(t0, t1, v0, v1);
 }
+TimeFunctionPtr make_spin_up(double omega, double T) {
+  if (!(T > 0.0)) throw std::invalid_argument("spin_up: the spin-up time must be positive");
+  return std::make_shared<SpinUp>(omega, T);
+}
+TimeFunctionPtr make_linear(double rate, double offset) { return std::make_shared<Linear>(rate, offset); }
 TimeFunctionPtr make_sine(double a, double f, double p, double o) { return std::make_shared<Sine>(a, f, p, o); }
 TimeFunctionPtr make_table(std::vector<double> t, std::vector<double> v) {
   if (t.size() < 2 || t.size() != v.size())

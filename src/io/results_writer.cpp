@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
 
 namespace alphaflex {
 namespace {
@@ -81,8 +82,17 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   std::vector<double> pos(3 * nn, 0.0), vel(3 * nn, 0.0), acc(3 * nn, 0.0), ang(nn, 0.0), axis(3 * nn, 0.0);
   for (size_t i = 0; i < nn; ++i) {
     const Node& n = model_.nodes()[i];
+    if (n.spatial()) {
+      const Pose<double> p = pose_of(s.q.data() + n.first_conf);
+      for (int k = 0; k < 3; ++k) {
+        pos[3 * i + k] = p.x[k];
+        vel[3 * i + k] = s.v[n.first_dof + k];
+        acc[3 * i + k] = s.qdd[n.first_dof + k];
+        axis[3 * i + k] = p.R(k, 0);
+      }
+      continue;
+    }
     const PlanarMarker m = PlanarMarker::on_node(n, Eigen::Vector2d::Zero(), 0);
-    if (n.spatial()) continue;  // TODO(spatial output)
     const Eigen::VectorXd q = s.q.segment(n.first_conf, n.nconf), v = s.v.segment(n.first_dof, n.ndof);
     const Eigen::VectorXd a = s.qdd.segment(n.first_dof, n.ndof);
     const Eigen::Vector2d p = m.position(q), pv = m.velocity(q, v);

@@ -1,5 +1,7 @@
 #include "alphaflex/io/scene.hpp"
 
+#include "scene_reader.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -20,220 +22,25 @@
 namespace alphaflex {
 namespace {
 
-/// Reading context: file label and named parameters; every error goes through fail().
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  /// Remembers the nodes a --set put in the tree, so that errors in them point at the option.
-  void add_override(const YAML::Node& value, const std::string& assignment) {
-    overrides_.emplace_back(value, assignment);
-    if (value.IsSequence() || value.IsMap())
-      for (const auto& child : value) add_override(value.IsMap() ? child.second : child, assignment);
-  }
-
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& key, const std::string& what) const {
-    std::ostringstream os;
-    const std::string* from_set = nullptr;
-    for (const auto& [node, text] : overrides_)
-      if (at.IsDefined() && node.is(at)) from_set = &text;
-    if (from_set) {
-      os << file_ << ": --set " << *from_set;
-    } else {
-      os << file_;
-      if (at.IsDefined() && at.Mark().line >= 0) os << ":" << (at.Mark().line + 1);
-    }
-    os << ": " << key << ": " << what;
-    throw InputError(os.str());
-  }
-
-  static std::string join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-  }
-
-  void keys(const YAML::Node& map, const std::string& path, const std::set<std::string>& allowed) const {
-    if (!map.IsMap()) fail(map, path, "expected a map of keys");
-    std::set<std::string> seen;
-    for (const auto& kv : map) {
-      const std::string k = kv.first.as<std::string>();
-      if (!allowed.count(k)) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(kv.first, join(path, k), "unknown key (allowed here: " + list + ")");
-      }
-      // yaml-cpp keeps both entries of a repeated key and reads the first: refuse it.
-      if (!seen.insert(k).second) fail(kv.first, join(path, k), "given twice");
-    }
-  }
-
-  YAML::Node need(const YAML::Node& map, const std::string& key, const std::string& path) const {
-    const YAML::Node n = map[key];
-    if (!n) fail(map, join(path, key), "missing (required)");
-    return n;
-  }
-
-  double number(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsScalar()) fail(n, key, "expected a number or an expression");
-    const std::string text = n.Scalar();
-    try {
-      const double v = evaluate_expression(text, scope_);
-      if (!std::isfinite(v)) fail(n, key, "'" + text + "' is not a finite number");
-      return v;
-    } catch (const std::invalid_argument& e) {
-      fail(n, key, std::string("expected a number, ") + e.what());
-    }
-  }
-  double number(const YAML::Node& map, const std::string& k, const std::string& path, double fallback) const {
-    return map[k] ? number(map[k], join(path, k)) : fallback;
-  }
-  double positive(const YAML::Node& n, const std::string& key, const std::string& what) const {
-    const double v = number(n, key);
-    if (!(v > 0.0)) fail(n, key, "expected a positive " + what + ", got " + n.Scalar());
-    return v;
-  }
-  double non_negative(const YAML::Node& n, const std::string& key, const std::string& what) const {
-    const double v = number(n, key);
-    if (!(v >= 0.0)) fail(n, key, "expected a non-negative " + what + ", got " + n.Scalar());
-    return v;
-  }
-  int integer(const YAML::Node& n, const std::string& key, int min, int max = 1000000) const {
-    const double v = number(n, key);
-    if (v != std::floor(v) || v < min || v > max)
-      fail(n, key, "expected an integer from " + std::to_string(min) + " to " + std::to_string(max));
-    return static_cast<int>(v);
-  }
-  bool flag(const YAML::Node& n, const std::string& key) const {
-    if (n.IsScalar()) {
-      const std::string s = n.Scalar();
-      if (s == "true" || s == "on" || s == "yes" || s == "1") return true;
-      if (s == "false" || s == "off" || s == "no" || s == "0") return false;
-    }
-    fail(n, key, "expected on/off (or true/false)");
-  }
-  std::string text(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsScalar()) fail(n, key, "expected a string");
-    return n.Scalar();
-  }
-  Eigen::Vector2d vec2(const YAML::Node& n, const std::string& key) const {
-    if (!n.IsSequence() || n.size() != 2) fail(n, key, "expected a list of 2 numbers [x, y]");
-    return {number(n[0], key + "[0]"), number(n[1], key + "[1]")};
-  }
-  Eigen::Vector2d vec2(const YAML::Node& map, const std::string& k, const std::string& path,
-                       const Eigen::Vector2d& fallback) const {
-    return map[k] ? vec2(map[k], join(path, k)) : fallback;
-  }
-
-  TimeFunctionPtr function(const YAML::Node& n, const std::string& key) const {
-    if (n.IsScalar()) return make_constant(number(n, key));
-    if (!n.IsMap()) fail(n, key, "expected a number or a time function {type: ...}");
-    const std::string type = text(need(n, "type", key), key + ".type");
-    try {
-      if (type == "constant") {
-        keys(n, key, {"type", "value"});
-        return make_constant(number(need(n, "value", key), key + ".value"));
-      }
-      if (type == "ramp" || type == "smooth_step") {
-        keys(n, key, {"type", "t0", "t1", "from", "to"});
-        const double t0 = number(need(n, "t0", key), key + ".t0"), t1 = number(need(n, "t1", key), key + ".t1");
-        const double v0 = number(n, "from", key, 0.0), v1 = number(need(n, "to", key), key + ".to");
-        return type == "ramp" ? make_ramp(t0, t1, v0, v1) : make_smooth_step(t0, t1, v0, v1);
-      }
-      if (type == "sine") {
-        keys(n, key, {"type", "amplitude", "frequency", "phase", "offset"});
-        return make_sine(number(need(n, "amplitude", key), key + ".amplitude"),
-                         number(need(n, "frequency", key), key + ".frequency"), number(n, "phase", key, 0.0),
-                         number(n, "offset", key, 0.0));
-      }
-      if (type == "table") {
-        keys(n, key, {"type", "t", "values"});
-        std::vector<double> t, v;
-        const YAML::Node nt = need(n, "t", key), nv = need(n, "values", key);
-        if (!nt.IsSequence() || !nv.IsSequence()) fail(n, key, "t and values must be lists of numbers");
-        for (size_t i = 0; i < nt.size(); ++i) t.push_back(number(nt[i], key + ".t"));
-        for (size_t i = 0; i < nv.size(); ++i) v.push_back(number(nv[i], key + ".values"));
-        return make_table(t, v);
-      }
-    } catch (const std::invalid_argument& e) {
-      fail(n, key, e.what());
-    }
-    fail(n, key + ".type", "unknown time function '" + type + "' (expected constant, ramp, smooth_step, sine, table)");
-  }
-
-  void read_parameters(const YAML::Node& p) {
-    if (!p) return;
-    if (!p.IsMap()) fail(p, "parameters", "expected a map name: value");
-    for (const auto& kv : p) {
-      const std::string name = kv.first.as<std::string>();
-      scope_[name] = number(kv.second, "parameters." + name);
-    }
-  }
-
- private:
-  std::string file_;
-  ExpressionScope scope_;
-  std::vector<std::pair<YAML::Node, std::string>> overrides_;
-};
-
-struct BodyRef {
-  int node = -1;  // -1 = ground
-};
-
-class SceneBuilder {
- public:
-  SceneBuilder(Reader& rd, Model& model) : rd_(rd), model_(model) {}
-
-  int body(const YAML::Node& map, const std::string& key, const std::string& path, bool ground_ok) {
-    const YAML::Node n = rd_.need(map, key, path);
-    const std::string name = rd_.text(n, path + "." + key);
-    if (name == "ground") {
-      if (!ground_ok) rd_.fail(n, path + "." + key, "'ground' cannot be used here (expected a body)");
-      return -1;
-    }
-    const int id = model_.find_node(name);
-    if (id < 0) rd_.fail(n, path + "." + key, "no body named '" + name + "'" + known_bodies());
-    return id;
-  }
-
-  std::string known_bodies() const {
-    std::string s = " (bodies: ";
-    for (const auto& nd : model_.nodes()) s += nd.name + " ";
-    return s + "ground)";
-  }
-
-  /// Marker of `node` (or the ground) at `local` (world point for the ground).
-  PlanarMarker marker(int node, const Eigen::Vector2d& local, const std::vector<int>& nodes, const YAML::Node& at,
-                      const std::string& key) {
-    if (node < 0) return PlanarMarker::ground(local);
-    try {
-      return PlanarMarker::on_node(model_.node(node), local, model_.local_offset(nodes, node));
-    } catch (const std::invalid_argument& e) {
-      rd_.fail(at, key, "body '" + model_.node(node).name + "': " + e.what());
-    }
-  }
-
-  /// World position at t = 0 of a marker.
-  Eigen::Vector2d initial_position(int node, const Eigen::Vector2d& local) {
-    if (node < 0) return local;
-    const PlanarMarker m = PlanarMarker::on_node(model_.node(node), local, 0);
-    return m.position(model_.node(node).q0);
-  }
-
-  /// Local coordinates on `node` of the world point p at t = 0.
-  Eigen::Vector2d to_local(int node, const Eigen::Vector2d& p) {
-    if (node < 0) return p;
-    const Node& nd = model_.node(node);
-    if (nd.kind != NodeKind::RigidBody2D) return Eigen::Vector2d::Zero();
-    return rotate(-nd.q0[2], p - Eigen::Vector2d(nd.q0[0], nd.q0[1]));
-  }
-
-  Reader& rd_;
-  Model& model_;
-};
+using scene_detail::Reader;
+using scene_detail::SceneBuilder;
+using scene_detail::BodyRef;
 
 void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<std::string>& warnings) {
   if (!s) return;
-  rd.keys(s, "solver", {"scheme", "rho_inf", "alpha_m", "alpha_f", "beta", "gamma", "h", "t_end", "scaling",
-                        "consistent_start", "newton"});
+  rd.keys(s, "solver", {"analysis", "scheme", "rho_inf", "alpha_m", "alpha_f", "beta", "gamma", "h", "t_end", "scaling",
+                        "consistent_start", "newton", "static", "initial_static"});
+  if (s["analysis"]) {
+    const std::string a = rd.text(s["analysis"], "solver.analysis");
+    if (a == "static") rs.analysis = Analysis::Static;
+    else if (a != "dynamic") rd.fail(s["analysis"], "solver.analysis", "expected dynamic or static, got '" + a + "'");
+  }
+  if (s["initial_static"]) rs.initial_static = rd.flag(s["initial_static"], "solver.initial_static");
+  if (const YAML::Node st = s["static"]) {
+    rd.keys(st, "solver.static", {"steps", "max_cuts"});
+    if (st["steps"]) rs.statics.steps = rd.integer(st["steps"], "solver.static.steps", 1, 1000000);
+    if (st["max_cuts"]) rs.statics.max_cuts = rd.integer(st["max_cuts"], "solver.static.max_cuts", 0, 50);
+  }
   const std::string scheme = s["scheme"] ? rd.text(s["scheme"], "solver.scheme") : "generalized-alpha";
   const bool explicit_any = s["alpha_m"] || s["alpha_f"] || s["beta"] || s["gamma"];
   double rho = scheme == "hht" ? 0.9 : 0.7;
@@ -293,6 +100,7 @@ void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<s
     if (n["atol"]) o.atol = rd.non_negative(n["atol"], "solver.newton.atol", "tolerance (m, rad)");
     if (n["atol_lambda"]) o.atol_lambda = rd.non_negative(n["atol_lambda"], "solver.newton.atol_lambda", "tolerance (N)");
   }
+  rs.statics.newton = rs.integrator.newton;
 }
 
 void read_bodies(Reader& rd, const YAML::Node& list, Model& model, const Eigen::Vector2d& gravity) {
@@ -601,8 +409,8 @@ Scene build(const YAML::Node& root, const std::string& label,
   Scene scene;
   scene.file = label;
   if (!root.IsMap()) rd.fail(root, "(top level)", "expected a map of sections (solver, bodies, joints, ...)");
-  rd.keys(root, "(top level)", {"name", "description", "parameters", "gravity", "solver", "output", "bodies",
-                                "joints", "forces", "sensors"});
+  rd.keys(root, "(top level)", {"name", "description", "parameters", "dimension", "gravity", "load", "solver", "output",
+                                "mesh", "beams", "bodies", "joints", "forces", "sensors"});
   rd.read_parameters(root["parameters"]);
   scene.name = root["name"] ? rd.text(root["name"], "name")
                             : std::filesystem::path(label).stem().string();
@@ -615,15 +423,39 @@ Scene build(const YAML::Node& root, const std::string& label,
     if (o["every"]) scene.settings.output_every = rd.integer(o["every"], "output.every", 1);
     if (o["hdf5"]) scene.settings.hdf5 = rd.flag(o["hdf5"], "output.hdf5");
   }
-  const Eigen::Vector2d gravity = rd.vec2(root, "gravity", "", Eigen::Vector2d::Zero());
+  RunSettings& rs = scene.settings;
+  if (root["dimension"]) {
+    rs.dimension = rd.integer(root["dimension"], "dimension", 2, 3);
+  }
+  if (const YAML::Node l = root["load"]) {
+    rd.keys(l, "load", {"factor"});
+    if (l["factor"]) rs.load_factor = rd.number(l["factor"], "load.factor");
+  }
+  rs.statics.target = rs.load_factor;
+  rs.integrator.load_factor = rs.load_factor;
   scene.model = std::make_unique<Model>();
   scene.model->name = scene.name;
-  read_bodies(rd, root["bodies"], *scene.model, gravity);
-  if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies");
   SceneBuilder sb(rd, *scene.model);
-  read_joints(rd, sb, root["joints"], *scene.model);
-  read_forces(rd, sb, root["forces"], *scene.model);
-  read_sensors(rd, sb, root["sensors"], *scene.model);
+  if (rs.dimension == 2) {
+    for (const char* k : {"mesh", "beams"})
+      if (root[k]) rd.fail(root[k], k, "beams and meshes need a spatial scene: add `dimension: 3`");
+    if (rs.analysis == Analysis::Static || rs.initial_static)
+      rd.fail(root["solver"], "solver", "static analysis is available for spatial scenes (dimension: 3)");
+    const Eigen::Vector2d gravity = rd.vec2(root, "gravity", "", Eigen::Vector2d::Zero());
+    read_bodies(rd, root["bodies"], *scene.model, gravity);
+    if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies");
+    read_joints(rd, sb, root["joints"], *scene.model);
+    read_forces(rd, sb, root["forces"], *scene.model);
+    read_sensors(rd, sb, root["sensors"], *scene.model);
+  } else {
+    const Eigen::Vector3d gravity = rd.vec3(root, "gravity", "", Eigen::Vector3d::Zero());
+    scene_detail::read_mesh_and_beams(rd, root, *scene.model, gravity);
+    scene_detail::read_spatial_bodies(rd, root["bodies"], *scene.model, gravity);
+    if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies and no beams");
+    scene_detail::read_spatial_joints(rd, sb, root["joints"], *scene.model);
+    scene_detail::read_spatial_forces(rd, sb, root["forces"], *scene.model);
+    scene_detail::read_spatial_sensors(rd, sb, root["sensors"], *scene.model);
+  }
   return scene;
 }
 

@@ -18,7 +18,8 @@ struct RunOptions {
 };
 
 struct RunSummary {
-  int steps = 0;
+  int steps = 0;              ///< time steps (load steps in a static analysis)
+  int static_steps = 0, static_cuts = 0;  ///< load steps and step cuts of the quasi-static solve
   long newton_total = 0;
   int newton_max = 0;
   int unknowns = 0, coordinates = 0, multipliers = 0;

@@ -17,35 +17,20 @@
 #include <string>
 #include <vector>
 
-#include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/integrators/alpha_parameters.hpp"
-#include "alphaflex/solvers/linear_solver.hpp"
+#include "alphaflex/integrators/linearized_system.hpp"
 
 namespace alphaflex {
 
-struct NewtonOptions {
-  int max_iterations = 20;
-  double rtol = 1e-9;          ///< relative size of the last correction (q and λ)
-  double atol = 1e-12;         ///< absolute, for coordinates (m, rad)
-  double atol_lambda = 1e-9;   ///< absolute, for multipliers (N, N·m)
-};
 
 struct IntegratorOptions {
   bool scaling = true;           ///< Bottasso et al. scaling of S_t
   bool consistent_start = true;  ///< project q0 and q̇0 onto the constraints
+  double load_factor = 1.0;      ///< multiplies every applied load (scene key load.factor)
   NewtonOptions newton;
 };
 
-/// Wall time spent by phase (seconds, this rank).
-struct PhaseTimes {
-  double assembly = 0.0, factorization = 0.0, solve = 0.0, output = 0.0;
-};
 
-struct NewtonRecord {
-  double residual_dynamic = 0.0;     ///< ‖r_q‖₂ as assembled (scaled by βh² when scaling is on)
-  double residual_constraint = 0.0;  ///< ‖Φ‖₂ (m, rad)
-  double correction_q = 0.0, correction_lambda = 0.0;  ///< ‖Δq‖∞, ‖Δλ‖∞
-};
 
 struct StepReport {
   int iterations = 0;
@@ -69,22 +54,14 @@ class GeneralizedAlpha {
   const AlphaParameters& parameters() const { return p_; }
   const Eigen::VectorXd& auxiliary() const { return a_; }
   void set_auxiliary(const Eigen::VectorXd& a) { a_ = a; }
-  const PhaseTimes& times() const { return times_; }
-  PhaseTimes& times() { return times_; }
+  const PhaseTimes& times() const { return lin_.times(); }
+  PhaseTimes& times() { return lin_.times(); }
 
  private:
-  /// Assemble, factor, solve S x = r; returns x in model order. Throws SolverError on failure.
-  ModelVector solve_linear(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
-                           ModelVector* residual);
-  std::string describe_largest(const ModelVector& r) const;
-
-  SaddlePointSystem& sys_;
-  LinearSolver& solver_;
+  LinearizedSystem lin_;
   AlphaParameters p_;
   IntegratorOptions opt_;
   Eigen::VectorXd a_;
-  PhaseTimes times_;
-  bool initializing_ = false;  ///< a singular matrix during initialize() is bad input
 };
 
 }  // namespace alphaflex

@@ -7,11 +7,21 @@
 #include <vector>
 
 #include "alphaflex/integrators/generalized_alpha.hpp"
+#include "alphaflex/integrators/quasi_static.hpp"
 #include "alphaflex/model/model.hpp"
 
 namespace alphaflex {
 
+enum class Analysis { Dynamic, Static };
+
 struct RunSettings {
+  int dimension = 2;    ///< 2: planar bodies (x, y, θ); 3: spatial bodies and beams on R³×SO(3)
+  Analysis analysis = Analysis::Dynamic;
+  /// Load stepping of a static analysis (its target is the load factor), or of the static
+  /// equilibrium that starts a dynamic run when `initial_static`.
+  StaticOptions statics;
+  bool initial_static = false;
+  double load_factor = 1.0;  ///< multiplies every applied load (`load.factor`)
   AlphaParameters parameters = AlphaParameters::from_rho_inf(0.7);
   IntegratorOptions integrator;
   double h = 1e-3;      ///< step size (s)

@@ -1,0 +1,67 @@
+#pragma once
+// One linearization of the equations of motion (or of equilibrium): assemble S and r at a state,
+// factor S with the linear solver, solve, and bring the solution back in model order — with the
+// wall time split by phase, PETSc log events, and a named diagnosis (redundant joints, coordinates
+// nothing acts on) instead of a bare factorization error. Shared by the time integrator and the
+// quasi-static solver.
+#include <string>
+#include <vector>
+
+#include "alphaflex/assembly/saddle_point_system.hpp"
+#include "alphaflex/solvers/linear_solver.hpp"
+
+namespace alphaflex {
+
+/// Throws SolverError naming `what` if a PETSc call failed.
+void check_petsc(PetscErrorCode ierr, const char* what);
+
+struct NewtonOptions {
+  int max_iterations = 20;
+  double rtol = 1e-9;          ///< relative size of the last correction (q and λ)
+  double atol = 1e-12;         ///< absolute, for coordinates (m, rad)
+  double atol_lambda = 1e-9;   ///< absolute, for multipliers (N, N·m)
+};
+
+struct NewtonRecord {
+  double residual_dynamic = 0.0;     ///< ‖r_q‖₂ as assembled (scaled by βh² when scaling is on)
+  double residual_constraint = 0.0;  ///< ‖Φ‖₂ (m, rad)
+  double correction_q = 0.0, correction_lambda = 0.0;  ///< ‖Δq‖∞, ‖Δλ‖∞
+};
+
+/// The Newton stopping rule on the last correction (generalized_alpha.hpp explains why):
+/// ‖Δq‖∞ ≤ atol + rtol‖q‖∞ and ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞, the λ test waived once Δq is at
+/// round-off (≤ 10⁴ ε ‖q‖) after the first iteration.
+bool newton_converged(const NewtonOptions& options, const NewtonRecord& last, int iteration, double q_norm,
+                      double lambda_norm);
+/// The aligned table of a Newton history printed when it fails.
+std::string format_newton_history(const std::vector<NewtonRecord>& history, bool scaled);
+
+/// Wall time spent by phase (seconds, this rank).
+struct PhaseTimes {
+  double assembly = 0.0, factorization = 0.0, solve = 0.0, output = 0.0;
+};
+
+class LinearizedSystem {
+ public:
+  LinearizedSystem(SaddlePointSystem& system, LinearSolver& solver);
+
+  /// Assemble, factor, solve S x = r; returns x in model order (and r if asked). Throws
+  /// SolverError on failure; InputError if `initializing` and the model itself is singular.
+  ModelVector solve(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
+                    ModelVector* residual);
+  /// "largest equilibrium residual … at node '…' (…); largest constraint violation … in joint '…'".
+  std::string describe_largest(const ModelVector& r) const;
+
+  SaddlePointSystem& system() { return sys_; }
+  const Model& model() const { return sys_.model(); }
+  PhaseTimes& times() { return times_; }
+  const PhaseTimes& times() const { return times_; }
+  bool initializing = false;  ///< a singular matrix is then bad input (the model as given)
+
+ private:
+  SaddlePointSystem& sys_;
+  LinearSolver& solver_;
+  PhaseTimes times_;
+};
+
+}  // namespace alphaflex

@@ -1,0 +1,306 @@
+// Spatial scenes (`dimension: 3`): rigid bodies on R³×SO(3), beams from gmsh meshes, 3D joints,
+// loads and sensors. Every key is documented in docs/input.md.
+#include <set>
+
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/spatial_elements.hpp"
+#include "alphaflex/joints/spatial_joints.hpp"
+#include "alphaflex/model/model.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
+#include "scene_reader.hpp"
+
+namespace alphaflex::scene_detail {
+namespace {
+
+/// `orientation`: a rotation vector [rx, ry, rz] (rad) or {axis: [..], angle: ..}.
+Eigen::Matrix3d read_orientation(Reader& rd, const YAML::Node& n, const std::string& key) {
+  if (n.IsSequence()) return exp_so3<double>(rd.vec3(n, key));
+  if (!n.IsMap()) rd.fail(n, key, "expected a rotation vector [rx, ry, rz] (rad) or {axis: [x, y, z], angle: a}");
+  rd.keys(n, key, {"axis", "angle"});
+  const Eigen::Vector3d axis = rd.direction(rd.need(n, "axis", key), key + ".axis");
+  return exp_so3<double>(Eigen::Vector3d(axis * rd.number(rd.need(n, "angle", key), key + ".angle")));
+}
+
+/// Inertia tensor: [Ixx, Iyy, Izz] (principal, body axes) or a symmetric 3×3 list of rows.
+Eigen::Matrix3d read_inertia(Reader& rd, const YAML::Node& n, const std::string& key) {
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  if (n.IsSequence() && n.size() == 3 && n[0].IsScalar()) {
+    J.diagonal() = rd.vec3(n, key);
+  } else if (n.IsSequence() && n.size() == 3) {
+    for (int i = 0; i < 3; ++i) J.row(i) = rd.vec3(n[i], key + "[" + std::to_string(i) + "]").transpose();
+    if ((J - J.transpose()).norm() > 1e-12 * J.norm()) rd.fail(n, key, "the inertia tensor must be symmetric");
+  } else {
+    rd.fail(n, key, "expected [Ixx, Iyy, Izz] or a 3x3 list of rows (kg m^2, body frame, about the centre of mass)");
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(J);
+  const Eigen::Vector3d e = es.eigenvalues();
+  if (!(e.minCoeff() > 0.0)) rd.fail(n, key, "the inertia tensor must be positive definite (a zero makes the mass matrix singular)");
+  // Triangle inequality of principal moments (a physical mass distribution).
+  if (e[0] + e[1] < e[2] * (1.0 - 1e-12)) rd.fail(n, key, "principal moments violate I1 + I2 >= I3: no body has this inertia");
+  return J;
+}
+
+int spatial_node(SceneBuilder& sb, const YAML::Node& map, const std::string& key, const std::string& path, bool ground_ok) {
+  const int id = sb.body(map, key, path, ground_ok);
+  if (id >= 0 && !sb.model_.node(id).spatial())
+    sb.rd_.fail(map[key], path + "." + key, "expected a spatial body or beam node");
+  return id;
+}
+
+/// Initial pose of a node (the identity for the ground).
+Pose<double> initial_pose(const Model& m, int node) {
+  if (node < 0) return Pose<double>{Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()};
+  return pose_of(m.node(node).q0.data());
+}
+
+/// A marker on `node` (slot in the joint's node list) that coincides with the world frame
+/// (position p, rotation R) at t = 0.
+SpatialMarker marker_at(const Model& m, int node, int slot, const Eigen::Vector3d& p, const Eigen::Matrix3d& R) {
+  SpatialMarker mk;
+  mk.slot = node < 0 ? -1 : slot;
+  const Pose<double> f = initial_pose(m, node);
+  mk.position = f.R.transpose() * (p - f.x);
+  mk.rotation = f.R.transpose() * R;
+  return mk;
+}
+
+}  // namespace
+
+void read_spatial_bodies(Reader& rd, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "bodies", "expected a list of bodies");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node b = list[i];
+    std::string path = "bodies[" + std::to_string(i) + "]";
+    if (!b.IsMap()) rd.fail(b, path, "expected a map with name, type, ...");
+    const std::string name = rd.text(rd.need(b, "name", path), path + ".name");
+    path = "bodies[" + name + "]";
+    if (name == "ground") rd.fail(b["name"], path + ".name", "'ground' is reserved for the fixed frame");
+    if (model.find_node(name) >= 0) rd.fail(b["name"], path + ".name", "a body or mesh point named '" + name + "' exists already");
+    const std::string type = rd.text(rd.need(b, "type", path), path + ".type");
+    if (type != "rigid_body")
+      rd.fail(b["type"], path + ".type", "unknown body type '" + type + "' for dimension 3 (expected rigid_body; beams come from `beams`)");
+    rd.keys(b, path, {"name", "type", "mass", "inertia", "position", "orientation", "velocity", "angular_velocity"});
+    const double m = rd.positive(rd.need(b, "mass", path), path + ".mass", "mass (kg); a zero mass makes the mass matrix singular");
+    const Eigen::Matrix3d J = read_inertia(rd, rd.need(b, "inertia", path), path + ".inertia");
+    const Eigen::Vector3d x = rd.vec3(rd.need(b, "position", path), path + ".position");
+    const Eigen::Matrix3d R = b["orientation"] ? read_orientation(rd, b["orientation"], path + ".orientation")
+                                               : Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d v = rd.vec3(b, "velocity", path, Eigen::Vector3d::Zero());
+    const Eigen::Vector3d w = rd.vec3(b, "angular_velocity", path, Eigen::Vector3d::Zero());  // world frame
+    Node nd;
+    nd.name = name;
+    nd.kind = NodeKind::Frame3D;
+    nd.q0.resize(7);
+    store_pose(x, R, nd.q0.data());
+    nd.v0.resize(6);
+    nd.v0 << v, R.transpose() * w;  // Ω in the body frame
+    const int id = model.add_node(nd);
+    model.add_element(std::make_unique<RigidBody3D>(name, id, m, J, gravity));
+  }
+}
+
+void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "joints", "expected a list of joints");
+  static const std::map<std::string, SpatialJointType> types{
+      {"spherical", SpatialJointType::Spherical}, {"universal", SpatialJointType::Universal},
+      {"revolute", SpatialJointType::Revolute},   {"cylindrical", SpatialJointType::Cylindrical},
+      {"prismatic", SpatialJointType::Prismatic}, {"planar", SpatialJointType::Planar},
+      {"fixed", SpatialJointType::Fixed}};
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node j = list[i];
+    std::string path = "joints[" + std::to_string(i) + "]";
+    if (!j.IsMap()) rd.fail(j, path, "expected a map with name, type, ...");
+    const std::string name = rd.text(rd.need(j, "name", path), path + ".name");
+    path = "joints[" + name + "]";
+    if (model.find_constraint(name) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + name + "' exists already");
+    const std::string tname = rd.text(rd.need(j, "type", path), path + ".type");
+    const auto it = types.find(tname);
+    if (it == types.end())
+      rd.fail(j["type"], path + ".type",
+              "unknown joint type '" + tname + "' (expected spherical, universal, revolute, cylindrical, prismatic, planar, fixed)");
+    const SpatialJointType type = it->second;
+    std::set<std::string> allowed{"name", "type", "body1", "body2", "location"};
+    const bool has_axis = type != SpatialJointType::Spherical && type != SpatialJointType::Fixed;
+    if (has_axis) allowed.insert("axis");
+    if (type == SpatialJointType::Universal) allowed.insert("axis2");
+    if (type == SpatialJointType::Revolute || type == SpatialJointType::Cylindrical || type == SpatialJointType::Prismatic ||
+        type == SpatialJointType::Fixed)
+      allowed.insert("reference");
+    if (type == SpatialJointType::Revolute || type == SpatialJointType::Cylindrical || type == SpatialJointType::Prismatic)
+      allowed.insert("driver");
+    rd.keys(j, path, allowed);
+    const int b1 = spatial_node(sb, j, "body1", path, false);
+    const int b2 = j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1;
+    if (b1 == b2) rd.fail(j["body2"], path + ".body2", "a joint needs two different bodies");
+    const Eigen::Vector3d loc = j["location"] ? rd.vec3(j["location"], path + ".location") : initial_pose(model, b1).x;
+    // Joint frame (world, t = 0): a3 along the axis; universal: a1 = axis (on body 1), a2 = axis2.
+    Eigen::Matrix3d R = initial_pose(model, b1).R;
+    if (type == SpatialJointType::Universal) {
+      const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
+      const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
+      if (std::fabs(a1.dot(a2)) > 1e-9)
+        rd.fail(j["axis2"], path + ".axis2", "the two axes of a universal joint must be perpendicular");
+      R.col(0) = a1;
+      R.col(1) = a2;
+      R.col(2) = a1.cross(a2);
+    } else if (has_axis) {
+      const Eigen::Vector3d a3 = rd.direction(rd.need(j, "axis", path), path + ".axis");
+      // a1: the `reference` direction (where a driver's angle is zero), else any perpendicular.
+      Eigen::Vector3d ref = j["reference"] ? rd.direction(j["reference"], path + ".reference")
+                                           : (std::fabs(a3.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
+      ref -= a3.dot(ref) * a3;
+      if (ref.norm() < 1e-9) rd.fail(j["reference"], path + ".reference", "must not be parallel to the axis");
+      R.col(0) = ref.normalized();
+      R.col(2) = a3;
+      R.col(1) = a3.cross(R.col(0));
+    } else if (j["reference"]) {
+      R = read_orientation(rd, j["reference"], path + ".reference");
+    }
+    TimeFunctionPtr angle, displacement;
+    if (const YAML::Node d = j["driver"]) {
+      rd.keys(d, path + ".driver", {"angle", "displacement"});
+      if (d["angle"]) {
+        if (type == SpatialJointType::Prismatic)
+          rd.fail(d["angle"], path + ".driver.angle", "a prismatic joint has no rotation to drive (use displacement)");
+        angle = rd.function(d["angle"], path + ".driver.angle");
+      }
+      if (d["displacement"]) {
+        if (type == SpatialJointType::Revolute)
+          rd.fail(d["displacement"], path + ".driver.displacement", "a revolute joint has no translation to drive (use angle)");
+        displacement = rd.function(d["displacement"], path + ".driver.displacement");
+      }
+    }
+    std::vector<int> nodes{b1};
+    if (b2 >= 0) nodes.push_back(b2);
+    const SpatialMarker A = marker_at(model, b1, 0, loc, R);
+    const SpatialMarker B = marker_at(model, b2, 1, loc, R);
+    try {
+      model.add_constraint(std::make_unique<SpatialJoint>(name, nodes, type, A, B, angle, displacement));
+    } catch (const std::invalid_argument& e) {
+      rd.fail(j, path, e.what());
+    }
+  }
+}
+
+void read_spatial_forces(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "forces", "expected a list of loads");
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node f = list[i];
+    std::string path = "forces[" + std::to_string(i) + "]";
+    if (!f.IsMap()) rd.fail(f, path, "expected a map with name, type, ...");
+    const std::string name = rd.text(rd.need(f, "name", path), path + ".name");
+    path = "forces[" + name + "]";
+    if (!names.insert(name).second) rd.fail(f["name"], path + ".name", "a force named '" + name + "' exists already");
+    const std::string type = rd.text(rd.need(f, "type", path), path + ".type");
+    if (type != "force" && type != "moment")
+      rd.fail(f["type"], path + ".type", "unknown load type '" + type + "' for dimension 3 (expected force, moment)");
+    rd.keys(f, path, type == "force" ? std::set<std::string>{"name", "type", "body", "point", "value", "follower"}
+                                     : std::set<std::string>{"name", "type", "body", "value", "follower"});
+    const int b = spatial_node(sb, f, "body", path, false);
+    const Eigen::Vector3d s = rd.vec3(f, "point", path, Eigen::Vector3d::Zero());
+    const YAML::Node v = rd.need(f, "value", path);
+    const char* unit = type == "force" ? "N" : "N m";
+    if (!v.IsSequence() || v.size() != 3)
+      rd.fail(v, path + ".value", std::string("expected [x, y, z], each a number or a time function (") + unit + ")");
+    std::array<TimeFunctionPtr, 3> value, none;
+    for (int k = 0; k < 3; ++k) value[static_cast<size_t>(k)] = rd.function(v[k], path + ".value[" + std::to_string(k) + "]");
+    const bool follower = f["follower"] ? rd.flag(f["follower"], path + ".follower") : false;
+    if (type == "force")
+      model.add_element(std::make_unique<SpatialLoad>(name, b, s, value, none, follower));
+    else
+      model.add_element(std::make_unique<SpatialLoad>(name, b, Eigen::Vector3d::Zero(), none, value, follower));
+  }
+}
+
+void read_spatial_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
+  if (!list) return;
+  if (!list.IsSequence()) rd.fail(list, "sensors", "expected a list of sensors");
+  std::set<std::string> names;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node s = list[i];
+    std::string path = "sensors[" + std::to_string(i) + "]";
+    if (!s.IsMap()) rd.fail(s, path, "expected a map with name, type, ...");
+    Sensor sn;
+    sn.name = rd.text(rd.need(s, "name", path), path + ".name");
+    path = "sensors[" + sn.name + "]";
+    if (sn.name == "t") rd.fail(s["name"], path + ".name", "'t' is reserved for the time column of the CSV");
+    if (!names.insert(sn.name).second) rd.fail(s["name"], path + ".name", "another sensor is named '" + sn.name + "' already");
+    if (sn.name.find_first_of(",\"\n") != std::string::npos)
+      rd.fail(s["name"], path + ".name", "a sensor name may not contain commas or quotes");
+    const std::string type = rd.text(rd.need(s, "type", path), path + ".type");
+    auto component = [&](std::initializer_list<const char*> allowed) {
+      const std::string c = rd.text(rd.need(s, "component", path), path + ".component");
+      int k = 0;
+      for (const char* a : allowed) {
+        if (c == a) return k;
+        ++k;
+      }
+      std::string l;
+      for (const char* a : allowed) l += std::string(l.empty() ? "" : ", ") + a;
+      rd.fail(s["component"], path + ".component", "expected one of " + l);
+    };
+    if (type == "point_position" || type == "point_displacement" || type == "point_velocity" ||
+        type == "point_acceleration") {
+      rd.keys(s, path, {"name", "type", "body", "point", "component", "relative_to"});
+      sn.kind = type == "point_position"       ? Sensor::Kind::PointPosition
+                : type == "point_velocity"     ? Sensor::Kind::PointVelocity
+                : type == "point_acceleration" ? Sensor::Kind::PointAcceleration
+                                               : Sensor::Kind::PointDisplacement;
+      sn.node = spatial_node(sb, s, "body", path, false);
+      sn.local = rd.vec3(s, "point", path, Eigen::Vector3d::Zero());
+      sn.component = component({"x", "y", "z"});
+      const Pose<double> p0 = initial_pose(model, sn.node);
+      sn.initial = p0.x + p0.R * sn.local;
+      if (s["relative_to"]) {
+        sn.frame_node = spatial_node(sb, s, "relative_to", path, false);
+        if (sn.kind == Sensor::Kind::PointDisplacement) {
+          // Displacement seen in the moving frame: position in that frame minus its initial value.
+          const Pose<double> f0 = initial_pose(model, sn.frame_node);
+          sn.initial = f0.R.transpose() * (sn.initial - f0.x);
+        }
+      }
+    } else if (type == "body_rotation") {
+      rd.keys(s, path, {"name", "type", "body", "component"});
+      sn.kind = Sensor::Kind::BodyRotation;
+      sn.node = spatial_node(sb, s, "body", path, false);
+      sn.component = component({"x", "y", "z"});
+    } else if (type == "joint_reaction") {
+      rd.keys(s, path, {"name", "type", "joint", "component"});
+      sn.kind = Sensor::Kind::JointReaction;
+      const std::string jn = rd.text(rd.need(s, "joint", path), path + ".joint");
+      sn.constraint = model.find_constraint(jn);
+      if (sn.constraint < 0) rd.fail(s["joint"], path + ".joint", "no joint named '" + jn + "'");
+      sn.component = component({"fx", "fy", "fz", "mx", "my", "mz"});
+    } else if (type == "beam_output") {
+      rd.keys(s, path, {"name", "type", "beam", "element", "component"});
+      sn.kind = Sensor::Kind::ElementOutput;
+      const std::string bn = rd.text(rd.need(s, "beam", path), path + ".beam");
+      const int idx = rd.integer(rd.need(s, "element", path), path + ".element", 0);
+      const std::string ename = bn + "[" + std::to_string(idx) + "]";
+      for (size_t e = 0; e < model.elements().size(); ++e)
+        if (model.elements()[e]->name() == ename) sn.element = static_cast<int>(e);
+      if (sn.element < 0) rd.fail(s["element"], path + ".element", "beam '" + bn + "' has no element " + std::to_string(idx) + " (elements are numbered from 0 along the mesh)");
+      const auto outs = model.elements()[static_cast<size_t>(sn.element)]->output_names();
+      const std::string c = rd.text(rd.need(s, "component", path), path + ".component");
+      sn.component = -1;
+      std::string l;
+      for (size_t k = 0; k < outs.size(); ++k) {
+        if (outs[k] == c) sn.component = static_cast<int>(k);
+        l += (k ? ", " : "") + outs[k];
+      }
+      if (sn.component < 0) rd.fail(s["component"], path + ".component", "expected one of " + l);
+    } else {
+      rd.fail(s["type"], path + ".type",
+              "unknown sensor type '" + type +
+                  "' for dimension 3 (expected point_position, point_displacement, point_velocity, point_acceleration, "
+                  "body_rotation, joint_reaction, beam_output)");
+    }
+    model.add_sensor(sn);
+  }
+}
+
+}  // namespace alphaflex::scene_detail
