@@ -1,0 +1,67 @@
+#pragma once
+// gmsh meshes → MeshData: node coordinates, named line blocks (2-node segments) and named points.
+// Upstream of the model: this module knows nothing of nodes' kinds, elements or PETSc. It reads a
+// .msh as is, or opens a .geo and meshes it in 1D with the gmsh C++ API (libgmsh). Conventions for
+// .geo parameters and physical groups: meshes/README.md.
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace alphaflex {
+
+/// How a .geo is meshed. Every option is refused for a .msh (read as is, never re-meshed).
+struct MeshOptions {
+  /// > 0: every curve of the .geo is meshed with this many elements (transfinite, uniform),
+  /// overriding the .geo's own sizes and Transfinite constraints. Excludes element_size.
+  int elements_per_curve = 0;
+  /// > 0 (m): Mesh.MeshSizeMax for the .geo. Curves whose number of elements the .geo fixes
+  /// (Transfinite Curve) cannot honour it: that is an error, not a silent override.
+  double element_size = 0.0;
+  /// Values of the .geo's ONELAB parameters, set before parsing: the key is the full ONELAB name
+  /// given in `DefineConstant[ n = {16, Name "n"} ];` (here "n"). A name the .geo does not
+  /// define this way is an error listing the names it does define.
+  std::map<std::string, double> parameters;
+};
+
+/// A physical group of dimension 1, as 2-node segments (3-node lines are split at their mid node).
+struct MeshLineBlock {
+  std::string name;                            ///< physical name, or "line_<tag>" if unnamed
+  int tag = 0;                                 ///< gmsh physical tag
+  std::vector<std::array<int, 2>> elements;    ///< local node ids, in gmsh element order
+  std::vector<std::size_t> element_tags;       ///< gmsh tag of the element each segment comes from
+};
+
+struct MeshData {
+  std::string file;                           ///< the path as given to read_mesh
+  std::vector<Eigen::Vector3d> points;        ///< node coordinates (m), index = local node id
+  std::vector<std::size_t> node_tags;         ///< gmsh tag of each local node (for messages)
+  std::vector<MeshLineBlock> line_blocks;     ///< physical groups of dimension 1, by physical tag
+  std::map<std::string, int> named_points;    ///< physical groups of dimension 0 → local node id
+  /// The .geo's ONELAB number parameters (DefineConstant with a Name) and the values it was
+  /// meshed with: defaults and MeshOptions::parameters. Empty for a .msh.
+  std::map<std::string, double> parameters;
+  /// gmsh's warnings while reading and meshing ("Warning: " removed), for the caller to print.
+  std::vector<std::string> warnings;
+  // Surface groups (shells) will come as surface blocks next to line_blocks.
+
+  /// The line block named `name`, or nullptr.
+  const MeshLineBlock* find_line_block(const std::string& name) const;
+};
+
+/// Reads a .msh, or opens a .geo and meshes it in 1D. Throws InputError, whose message starts
+/// with `context` (e.g. "scene.yaml:12: mesh.file") and names the file and what was expected, for
+/// every failure: missing or unreadable file, unknown extension, gmsh's own errors, options that
+/// do not fit the file, unknown parameters, no physical groups of dimension 0 or 1, unsupported
+/// element types, named points that are not exactly one node, duplicate group names.
+///
+/// Local node ids are compact (only nodes of the returned groups) and deterministic: in order of
+/// first use by the line blocks (by physical tag, gmsh element order), then the named points'
+/// nodes (by physical tag). Each call runs its own gmsh session (initialize ... finalize), so
+/// gmsh must not be used elsewhere in the process at the same time; concurrent calls from
+/// threads are serialized. It writes no file of its own: safe on every MPI rank at once.
+MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context);
+
+}  // namespace alphaflex

@@ -1,0 +1,22 @@
+// spinup_beam.geo — straight beam of Simo & Vu-Quoc's spin-up problem (1986): from the hub at
+// (0, 0, 0) to (L, 0, 0), meshed with n equal 2-node elements. The hub rotation is applied to the
+// "hub" node by the scene.
+// Units: m.
+// Physical groups: line "beam"; points "hub" (origin), "tip" (x = L).
+// Parameters (ONELAB, set from a scene's mesh.parameters or `gmsh -setnumber NAME VALUE`):
+//   L  beam length (m), default 10
+//   n  number of elements, default 10
+// mesh.elements_per_curve overrides n; mesh.element_size does not apply (n fixes the count).
+DefineConstant[
+  L = {10, Name "L"},
+  n = {10, Name "n"}
+];
+
+Point(1) = {0, 0, 0};
+Point(2) = {L, 0, 0};
+Line(1) = {1, 2};
+Transfinite Curve{1} = n + 1;
+
+Physical Curve("beam") = {1};
+Physical Point("hub") = {1};
+Physical Point("tip") = {2};

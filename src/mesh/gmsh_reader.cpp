@@ -1,0 +1,409 @@
+// gmsh → MeshData through the gmsh C++ API (Debian gmsh 4.8.4).
+//
+// What that API does on failure (checked on 4.8.4, General.AbortOnError = 3): every gmsh error
+// (Msg::Error) throws a std::string holding the message, e.g. "'x.geo', line 1: syntax error (;)"
+// or "Could not read nodes"; the logger keeps it as "Error: ...". Some failures are silent and are
+// checked here instead: opening a missing file does nothing, a .msh without a $MeshFormat header
+// is parsed as a .geo script, a Physical group naming a curve or point that does not exist is
+// dropped. gmsh state that survives gmsh::finalize(): the ONELAB database (so it is cleared before
+// and after each read), nothing else that matters here; the lock gmsh leaves set when an error
+// interrupts gmsh::open is reset by the next gmsh::initialize.
+#include "alphaflex/mesh/gmsh_reader.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+#include "alphaflex/core/error.hpp"
+
+namespace alphaflex {
+
+const MeshLineBlock* MeshData::find_line_block(const std::string& name) const {
+  for (const MeshLineBlock& b : line_blocks)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
+namespace {
+
+// gmsh is one global state: one session at a time in this process.
+std::mutex gmsh_mutex;
+
+constexpr int kLine2 = 1;  // gmsh element type: 2-node line
+constexpr int kLine3 = 8;  // 3-node line (second order): nodes [end, end, mid]
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(15);
+  s << v;
+  return s.str();
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& sep = ", ") {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? sep : "") + items[i];
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// One gmsh session: initialize with no configuration files and a silent terminal, errors thrown,
+/// an empty ONELAB database and the logger on; finalize (quietly) in every case.
+class GmshSession {
+ public:
+  GmshSession() {
+    gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
+    try {
+      gmsh::option::setNumber("General.Terminal", 0);
+      gmsh::option::setNumber("General.AbortOnError", 3);  // throw on every error, never exit
+      gmsh::onelab::clear();  // the database outlives gmsh::finalize (values of a previous read)
+      gmsh::logger::start();
+    } catch (...) {
+      shut_down();
+      throw;
+    }
+  }
+  ~GmshSession() { shut_down(); }
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+
+  /// Logged messages starting with `level` (e.g. "Error: "), with that prefix removed.
+  static std::vector<std::string> logged(const std::string& level) {
+    std::vector<std::string> out;
+    try {
+      std::vector<std::string> log;
+      gmsh::logger::get(log);
+      for (const std::string& line : log)
+        if (line.compare(0, level.size(), level) == 0) out.push_back(line.substr(level.size()));
+    } catch (...) {
+    }
+    return out;
+  }
+
+ private:
+  static void shut_down() noexcept {
+    try { gmsh::logger::stop(); } catch (...) {}
+    try { gmsh::onelab::clear(); } catch (...) {}
+    try { gmsh::finalize(); } catch (...) {}
+  }
+};
+
+class Reader {
+ public:
+  Reader(std::string path, const MeshOptions& options, const std::string& context)
+      : path_(std::move(path)), options_(options) {
+    prefix_ = (context.empty() ? "" : context + ": ") + "mesh '" + path_ + "': ";
+  }
+
+  MeshData read() {
+    check_file_and_options();
+    std::lock_guard<std::mutex> lock(gmsh_mutex);
+    std::optional<GmshSession> session;
+    try {
+      stage_ = "starting gmsh";
+      session.emplace();
+      MeshData mesh;
+      mesh.file = path_;
+      if (is_geo_) {
+        stage_ = "reading the .geo (expected a valid gmsh geometry script)";
+        for (const auto& [name, value] : options_.parameters) gmsh::onelab::setNumber(name, {value});
+        gmsh::open(path_);
+        mesh.parameters = check_parameters();
+        stage_ = "meshing the .geo in 1D";
+        mesh_geo();
+      } else {
+        stage_ = "reading the .msh (expected a valid gmsh MSH file)";
+        gmsh::open(path_);
+      }
+      stage_ = "reading the mesh's physical groups";
+      extract(mesh);
+      mesh.warnings = GmshSession::logged("Warning: ");
+      return mesh;
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::string& message) {
+      fail_gmsh(message);
+    } catch (const std::exception& e) {
+      fail_gmsh(e.what());
+    } catch (...) {
+      std::string last;
+      try { gmsh::logger::getLastError(last); } catch (...) {}
+      fail_gmsh(last.empty() ? "unknown gmsh failure" : last);
+    }
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(prefix_ + what); }
+
+  /// A gmsh error: its own text, plus any other errors it logged on the way.
+  [[noreturn]] void fail_gmsh(const std::string& message) const {
+    std::string text = "gmsh failed while " + stage_ + ": " + message;
+    for (const std::string& e : GmshSession::logged("Error: "))
+      if (e != message) text += "; " + e;
+    fail(text);
+  }
+
+  void check_file_and_options() {
+    namespace fs = std::filesystem;
+    const std::string ext = lower(fs::path(path_).extension().string());
+    if (ext != ".geo" && ext != ".msh")
+      fail("expected a gmsh file ending in .geo (geometry, meshed here) or .msh (mesh, read as is)");
+    is_geo_ = ext == ".geo";
+
+    std::error_code ec;
+    if (!fs::exists(path_, ec)) fail("file not found");
+    if (!fs::is_regular_file(path_, ec)) fail("not a regular file");
+    std::ifstream in(path_, std::ios::binary);
+    if (!in) fail("cannot be opened for reading");
+    if (!is_geo_) {
+      // gmsh parses a .msh without this header as a .geo script; never run one by mistake.
+      std::string word;
+      in >> word;
+      if (word != "$MeshFormat")
+        fail("not a gmsh MSH file: expected it to start with $MeshFormat" +
+             (word.empty() ? std::string(" (the file is empty)") : ", found '" + word.substr(0, 40) + "'"));
+    }
+
+    if (options_.elements_per_curve < 0)
+      fail("elements_per_curve = " + std::to_string(options_.elements_per_curve) + ": expected a number > 0, or 0 for the .geo's own sizes");
+    if (options_.elements_per_curve == INT_MAX) fail("elements_per_curve is too large");
+    if (!std::isfinite(options_.element_size) || options_.element_size < 0)
+      fail("element_size = " + number(options_.element_size) + ": expected a length > 0 (m), or 0 for the .geo's own sizes");
+    for (const auto& [name, value] : options_.parameters) {
+      if (name.empty()) fail("a parameter has an empty name");
+      if (!std::isfinite(value)) fail("parameter '" + name + "' = " + number(value) + ": expected a finite number");
+    }
+    if (!is_geo_) {
+      std::vector<std::string> given;
+      if (options_.elements_per_curve > 0) given.push_back("elements_per_curve");
+      if (options_.element_size > 0) given.push_back("element_size");
+      if (!options_.parameters.empty()) given.push_back("parameters");
+      if (!given.empty())
+        fail(join(given) + (given.size() > 1 ? " apply" : " applies") +
+             " to a .geo only: a .msh is read as is (mesh the .geo instead, or mesh it again with gmsh)");
+    } else if (options_.elements_per_curve > 0 && options_.element_size > 0) {
+      fail("elements_per_curve and element_size exclude each other: give one");
+    }
+  }
+
+  /// The .geo's ONELAB number parameters after gmsh::open, checked against options_.parameters:
+  /// a parameter the .geo defines gets a "clients" entry (Gmsh) in the database; one that only we
+  /// set has none.
+  std::map<std::string, double> check_parameters() const {
+    std::vector<std::string> names;
+    gmsh::onelab::getNames(names);
+    std::map<std::string, double> defined;
+    for (const std::string& name : names) {
+      if (name.rfind("Gmsh/", 0) == 0 || name.rfind("ONELAB/", 0) == 0) continue;
+      std::string json;
+      gmsh::onelab::get(json, name);
+      if (json.find("\"clients\"") == std::string::npos) continue;
+      std::vector<double> value;
+      gmsh::onelab::getNumber(name, value);
+      if (value.size() == 1) defined[name] = value[0];
+    }
+    std::vector<std::string> unknown;
+    for (const auto& [name, value] : options_.parameters)
+      if (!defined.count(name)) unknown.push_back("'" + name + "'");
+    if (!unknown.empty()) {
+      std::vector<std::string> known;
+      for (const auto& [name, value] : defined) known.push_back("'" + name + "'");
+      fail("unknown parameter" + std::string(unknown.size() > 1 ? "s " : " ") + join(unknown) + ": " +
+           (known.empty() ? std::string("the .geo defines no parameters")
+                          : "the .geo defines " + join(known)) +
+           " (a parameter is a DefineConstant with a Name, e.g. DefineConstant[ n = {16, Name \"n\"} ];"
+           " see meshes/README.md)");
+    }
+    for (const auto& [name, value] : options_.parameters)
+      if (defined.at(name) != value)
+        fail("parameter '" + name + "' = " + number(value) + " was not taken: the .geo keeps " +
+             number(defined.at(name)) + " (is it ReadOnly in its DefineConstant?)");
+    return defined;
+  }
+
+  void mesh_geo() const {
+    if (options_.elements_per_curve > 0) {
+      gmsh::vectorpair curves;
+      gmsh::model::getEntities(curves, 1);
+      for (const auto& [dim, tag] : curves)
+        gmsh::model::mesh::setTransfiniteCurve(tag, options_.elements_per_curve + 1);
+    }
+    if (options_.element_size > 0) gmsh::option::setNumber("Mesh.MeshSizeMax", options_.element_size);
+    gmsh::model::mesh::generate(1);
+  }
+
+  /// With element_size, every curve element (chord between its end nodes) must be no longer.
+  void check_element_size(const std::unordered_map<std::size_t, Eigen::Vector3d>& coords) const {
+    const double h = options_.element_size;
+    gmsh::vectorpair curves;
+    gmsh::model::getEntities(curves, 1);
+    for (const auto& [dim, tag] : curves) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> element_tags, node_tags;
+      gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, tag);
+      for (size_t t = 0; t < types.size(); ++t) {
+        if (types[t] != kLine2 && types[t] != kLine3) continue;
+        const size_t per = types[t] == kLine2 ? 2 : 3;
+        for (size_t e = 0; e < element_tags[t].size(); ++e) {
+          const double length = (coords.at(node_tags[t][per * e + 1]) - coords.at(node_tags[t][per * e])).norm();
+          if (length > h * (1 + 1e-6))
+            fail("element_size = " + number(h) + " m was not honoured: curve " + std::to_string(tag) +
+                 " has an element of length " + number(length) +
+                 " m (the .geo fixes its number of elements, e.g. Transfinite Curve, or its sizes; "
+                 "use elements_per_curve or the .geo's parameters instead)");
+        }
+      }
+    }
+  }
+
+  struct Group {
+    int dim;
+    int tag;
+    std::string name;
+  };
+
+  void extract(MeshData& mesh) {
+    // Physical groups of dimension 0 and 1, by (dim, tag); names checked before anything else.
+    gmsh::vectorpair physical;
+    gmsh::model::getPhysicalGroups(physical);
+    std::sort(physical.begin(), physical.end());
+    std::vector<Group> groups;
+    std::map<std::string, const char*> seen;
+    std::vector<std::string> other_dims;
+    for (const auto& [dim, tag] : physical) {
+      if (dim > 1) {
+        other_dims.push_back(std::to_string(dim));
+        continue;
+      }
+      std::string name;
+      gmsh::model::getPhysicalName(dim, tag, name);
+      if (name.empty()) name = (dim == 1 ? "line_" : "point_") + std::to_string(tag);
+      const char* kind = dim == 1 ? "line (dimension 1)" : "point (dimension 0)";
+      if (seen.count(name))
+        fail("two physical groups are named '" + name + "' (a " + seen[name] + " and a " + kind +
+             ", tag " + std::to_string(tag) + "): expected unique names");
+      seen[name] = kind;
+      groups.push_back({dim, tag, name});
+    }
+    if (groups.empty())
+      fail(std::string("no physical groups of dimension 0 or 1") +
+           (other_dims.empty() ? "" : " (groups of higher dimension are not read yet)") +
+           ": expected the beam curves in a Physical Curve(\"name\") and named points in a "
+           "Physical Point(\"name\") (see meshes/README.md)");
+
+    // Coordinates of every node (bulk, one call).
+    std::unordered_map<std::size_t, Eigen::Vector3d> coords;
+    {
+      std::vector<std::size_t> tags;
+      std::vector<double> xyz, parametric;
+      gmsh::model::mesh::getNodes(tags, xyz, parametric, -1, -1, false, false);
+      coords.reserve(tags.size());
+      for (size_t i = 0; i < tags.size(); ++i) coords[tags[i]] = Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    }
+    if (is_geo_ && options_.element_size > 0) check_element_size(coords);
+
+    std::unordered_map<std::size_t, int> local;  // gmsh node tag → local id
+    auto local_id = [&](std::size_t gmsh_tag, const Group& g) {
+      auto it = local.find(gmsh_tag);
+      if (it != local.end()) return it->second;
+      auto c = coords.find(gmsh_tag);
+      if (c == coords.end())
+        fail("physical group '" + g.name + "' uses node " + std::to_string(gmsh_tag) + ", which has no coordinates");
+      const int id = static_cast<int>(mesh.points.size());
+      local.emplace(gmsh_tag, id);
+      mesh.points.push_back(c->second);
+      mesh.node_tags.push_back(gmsh_tag);
+      return id;
+    };
+
+    for (const Group& g : groups) {
+      if (g.dim != 1) continue;
+      MeshLineBlock block;
+      block.name = g.name;
+      block.tag = g.tag;
+      std::map<std::pair<std::size_t, std::size_t>, std::size_t> segment_owner;  // duplicates
+      auto add = [&](std::size_t a, std::size_t b, std::size_t element_tag) {
+        const auto key = std::minmax(a, b);
+        auto [it, fresh] = segment_owner.emplace(key, element_tag);
+        if (!fresh && it->second != element_tag)
+          fail("physical group '" + g.name + "': elements " + std::to_string(it->second) + " and " +
+               std::to_string(element_tag) + " join the same nodes (" + std::to_string(a) + ", " +
+               std::to_string(b) + "): expected each segment once (a MSH 2 file repeats the elements "
+               "of a curve in several physical groups; save the mesh in MSH 4 format)");
+        block.elements.push_back({local_id(a, g), local_id(b, g)});
+        block.element_tags.push_back(element_tag);
+      };
+      std::vector<int> entities;
+      gmsh::model::getEntitiesForPhysicalGroup(1, g.tag, entities);
+      for (int entity : entities) {
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> element_tags, node_tags;
+        gmsh::model::mesh::getElements(types, element_tags, node_tags, 1, entity);
+        for (size_t t = 0; t < types.size(); ++t) {
+          const std::vector<std::size_t>& n = node_tags[t];
+          if (types[t] == kLine2) {
+            for (size_t e = 0; e < element_tags[t].size(); ++e) add(n[2 * e], n[2 * e + 1], element_tags[t][e]);
+          } else if (types[t] == kLine3) {  // [end, end, mid] → (end, mid), (mid, end)
+            for (size_t e = 0; e < element_tags[t].size(); ++e) {
+              add(n[3 * e], n[3 * e + 2], element_tags[t][e]);
+              add(n[3 * e + 2], n[3 * e + 1], element_tags[t][e]);
+            }
+          } else if (!element_tags[t].empty()) {
+            std::string type_name;
+            int edim = 0, order = 0, nodes = 0, primary = 0;
+            std::vector<double> local_coords;
+            gmsh::model::mesh::getElementProperties(types[t], type_name, edim, order, nodes, local_coords, primary);
+            fail("physical group '" + g.name + "' (dimension 1) holds element " +
+                 std::to_string(element_tags[t][0]) + " of type '" + type_name + "' (gmsh type " +
+                 std::to_string(types[t]) + "): expected 2-node lines (type 1) or 3-node lines "
+                 "(type 8; Mesh.ElementOrder 1 or 2)");
+          }
+        }
+      }
+      if (block.elements.empty())
+        fail("physical group '" + g.name + "' (dimension 1) has no line elements: expected a "
+             "meshed curve (does it name curves that exist?)");
+      mesh.line_blocks.push_back(std::move(block));
+    }
+
+    for (const Group& g : groups) {
+      if (g.dim != 0) continue;
+      std::vector<std::size_t> tags;
+      std::vector<double> xyz;
+      gmsh::model::mesh::getNodesForPhysicalGroup(0, g.tag, tags, xyz);
+      if (tags.size() != 1)
+        fail("physical point group '" + g.name + "' holds " + std::to_string(tags.size()) +
+             " nodes: expected exactly one (a named point is one geometry point)");
+      mesh.named_points[g.name] = local_id(tags[0], g);
+    }
+  }
+
+  std::string path_;
+  const MeshOptions& options_;
+  std::string prefix_;
+  std::string stage_;
+  bool is_geo_ = false;
+};
+
+}  // namespace
+
+MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context) {
+  return Reader(path, options, context).read();
+}
+
+}  // namespace alphaflex
