@@ -36,6 +36,14 @@ void write_ints(hid_t loc, const char* name, const std::vector<int>& v) {
 ResultsWriter::ResultsWriter(const Model& model, const std::string& outdir, const std::string& name, bool hdf5,
                              int rank)
     : model_(model), active_(rank == 0), hdf5_(hdf5) {
+  // Beams (two-node elements with result fields) are drawn as line segments between their nodes.
+  for (size_t e = 0; e < model.elements().size(); ++e) {
+    const Element& el = *model.elements()[e];
+    if (el.nodes().size() == 2 && !el.output_names().empty()) {
+      if (beam_fields_.empty()) beam_fields_ = el.output_names();
+      if (el.output_names() == beam_fields_) beams_.push_back(static_cast<int>(e));
+    }
+  }
   namespace fs = std::filesystem;
   const fs::path dir = fs::absolute(outdir);
   h5_name_ = name + ".h5";
@@ -60,6 +68,9 @@ ResultsWriter::ResultsWriter(const Model& model, const std::string& outdir, cons
     for (size_t i = 0; i < joints.size(); ++i) joints[i] = static_cast<int>(i);
     write_ints(topo, "nodes", nodes);
     write_ints(topo, "joints", joints);
+    std::vector<int> conn;
+    for (int e : beams_) for (int n : model_.elements()[static_cast<size_t>(e)]->nodes()) conn.push_back(n);
+    if (!beams_.empty()) write_ints(topo, "beam_connectivity", conn);
     H5Gclose(topo);
   }
 }
@@ -80,16 +91,21 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   if (!active_ || !hdf5_) return;
   const size_t nn = model_.nodes().size(), nj = model_.constraints().size();
   std::vector<double> pos(3 * nn, 0.0), vel(3 * nn, 0.0), acc(3 * nn, 0.0), ang(nn, 0.0), axis(3 * nn, 0.0);
+  std::vector<double> axis2(3 * nn, 0.0), axis3(3 * nn, 0.0), quat(4 * nn, 0.0), disp(3 * nn, 0.0);
   for (size_t i = 0; i < nn; ++i) {
     const Node& n = model_.nodes()[i];
     if (n.spatial()) {
       const Pose<double> p = pose_of(s.q.data() + n.first_conf);
       for (int k = 0; k < 3; ++k) {
         pos[3 * i + k] = p.x[k];
+        disp[3 * i + k] = p.x[k] - n.q0[k];
         vel[3 * i + k] = s.v[n.first_dof + k];
         acc[3 * i + k] = s.qdd[n.first_dof + k];
         axis[3 * i + k] = p.R(k, 0);
+        axis2[3 * i + k] = p.R(k, 1);
+        axis3[3 * i + k] = p.R(k, 2);
       }
+      for (int k = 0; k < 4; ++k) quat[4 * i + k] = s.q[n.first_conf + 3 + k];  // (w, x, y, z)
       continue;
     }
     const PlanarMarker m = PlanarMarker::on_node(n, Eigen::Vector2d::Zero(), 0);
@@ -108,6 +124,14 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
     ang[i] = th;
     axis[3 * i] = std::cos(th);
     axis[3 * i + 1] = std::sin(th);
+    axis2[3 * i] = -std::sin(th);
+    axis2[3 * i + 1] = std::cos(th);
+    axis3[3 * i + 2] = 1.0;
+    quat[4 * i] = std::cos(th / 2.0);
+    quat[4 * i + 3] = std::sin(th / 2.0);
+    const Eigen::Vector2d p0 = m.position(n.q0);
+    disp[3 * i] = p[0] - p0[0];
+    disp[3 * i + 1] = p[1] - p0[1];
   }
   std::vector<double> jloc(3 * nj, 0.0), jforce(3 * nj, 0.0), jmoment(3 * nj, 0.0);
   for (size_t c = 0; c < nj; ++c) {
@@ -135,6 +159,28 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   write_array(g, "node_acceleration", acc.data(), nn, 3);
   write_array(g, "node_angle", ang.data(), nn, 1);
   write_array(g, "node_axis", axis.data(), nn, 3);
+  write_array(g, "node_axis2", axis2.data(), nn, 3);
+  write_array(g, "node_axis3", axis3.data(), nn, 3);
+  write_array(g, "node_quaternion", quat.data(), nn, 4);
+  write_array(g, "node_displacement", disp.data(), nn, 3);
+  if (!beams_.empty()) {
+    // Section forces and strains per beam element (constant on a two-node element): cell data.
+    const size_t nb = beams_.size(), nf = beam_fields_.size();
+    std::vector<std::vector<double>> fields(nf, std::vector<double>(nb, 0.0));
+    LocalState ls;
+    Eigen::VectorXd values;
+    for (size_t b = 0; b < nb; ++b) {
+      const Element& e = *model_.elements()[static_cast<size_t>(beams_[b])];
+      const auto idx = model_.dofs_of(e.nodes());
+      ls.q = gather(s.q, model_.confs_of(e.nodes()));
+      ls.v = gather(s.v, idx);
+      ls.qdd = gather(s.qdd, idx);
+      ls.t = s.t;
+      e.output(ls, values);
+      for (size_t f = 0; f < nf && f < static_cast<size_t>(values.size()); ++f) fields[f][b] = values[static_cast<Eigen::Index>(f)];
+    }
+    for (size_t f = 0; f < nf; ++f) write_array(g, ("beam_" + beam_fields_[f]).c_str(), fields[f].data(), nb, 1);
+  }
   write_array(g, "joint_location", jloc.data(), nj, 3);
   write_array(g, "joint_force", jforce.data(), nj, 3);
   write_array(g, "joint_moment", jmoment.data(), nj, 3);
@@ -187,10 +233,11 @@ void ResultsWriter::write_xdmf() const {
       item(groups_[s], geom, n, 3);
       x << "    </Geometry>\n";
       for (const auto& [aname, set] : attrs) {
-        const bool scalar = std::string(set) == "node_angle";
-        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\"" << (scalar ? "Scalar" : "Vector")
-          << "\" Center=\"Node\">\n";
-        item(groups_[s], set, n, scalar ? 1 : 3);
+        const std::string name = set;
+        const bool scalar = name == "node_angle", quaternion = name == "node_quaternion";
+        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\""
+          << (scalar ? "Scalar" : quaternion ? "Matrix" : "Vector") << "\" Center=\"Node\">\n";
+        item(groups_[s], set, n, scalar ? 1 : quaternion ? 4 : 3);
         x << "    </Attribute>\n";
       }
       x << "   </Grid>\n";
@@ -198,8 +245,38 @@ void ResultsWriter::write_xdmf() const {
     x << "  </Grid>\n";
   };
   grid("bodies", nn, "nodes", "node_position",
-       {{"velocity", "node_velocity"}, {"acceleration", "node_acceleration"}, {"angle", "node_angle"},
-        {"axis", "node_axis"}});
+       {{"displacement", "node_displacement"}, {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"},
+        {"angle", "node_angle"}, {"axis", "node_axis"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"},
+        {"quaternion", "node_quaternion"}});
+  if (!beams_.empty()) {
+    // Beams: line segments in the deformed configuration, node frames and section results.
+    const size_t nb = beams_.size();
+    x << "  <Grid Name=\"beams\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < times_.size(); ++s) {
+      x << "   <Grid Name=\"beams\" GridType=\"Uniform\">\n    <Time Value=\"" << times_[s] << "\"/>\n"
+        << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nb << "\" NodesPerElement=\"2\">\n"
+        << "      <DataItem Dimensions=\"" << nb << " 2\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5_name_
+        << ":/topology/beam_connectivity</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
+      item(groups_[s], "node_position", nn, 3);
+      x << "    </Geometry>\n";
+      for (const auto& [aname, set] : {std::pair<const char*, const char*>{"displacement", "node_displacement"},
+                                       {"velocity", "node_velocity"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"}}) {
+        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\"Vector\" Center=\"Node\">\n";
+        item(groups_[s], set, nn, 3);
+        x << "    </Attribute>\n";
+      }
+      x << "    <Attribute Name=\"quaternion\" AttributeType=\"Matrix\" Center=\"Node\">\n";
+      item(groups_[s], "node_quaternion", nn, 4);
+      x << "    </Attribute>\n";
+      for (const auto& f : beam_fields_) {
+        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+        item(groups_[s], ("beam_" + f).c_str(), nb, 1);
+        x << "    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  }
   if (nj > 0) grid("joints", nj, "joints", "joint_location", {{"force", "joint_force"}, {"moment", "joint_moment"}});
   x << " </Domain>\n</Xdmf>\n";
   x.close();

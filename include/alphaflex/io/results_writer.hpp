@@ -1,6 +1,8 @@
 #pragma once
 // Results for ParaView and for scripts: an HDF5 file with one group per output step and an XDMF
-// index (temporal collections "bodies" and "joints", polyvertex grids, Precision="8" doubles),
+// index (temporal collections "bodies" and "joints" as polyvertex grids with node frames (axes and
+// quaternion) and "beams" as line segments in the deformed configuration with section forces and
+// strains as cell data; Precision="8" doubles),
 // plus the sensors as CSV (header row, first column t, 17 significant digits).
 //
 // With the replicated state of the core engine, rank 0 writes everything; the parallel issue
@@ -45,6 +47,8 @@ class ResultsWriter {
   std::vector<double> times_;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   std::vector<std::string> groups_;
+  std::vector<int> beams_;                 ///< elements drawn as beam segments
+  std::vector<std::string> beam_fields_;   ///< their result fields (cell data)
 };
 
 }  // namespace alphaflex
