@@ -1,13 +1,17 @@
 // gmsh → MeshData through the gmsh C++ API (Debian gmsh 4.8.4).
 //
-// What that API does on failure (checked on 4.8.4, General.AbortOnError = 3): every gmsh error
-// (Msg::Error) throws a std::string holding the message, e.g. "'x.geo', line 1: syntax error (;)"
-// or "Could not read nodes"; the logger keeps it as "Error: ...". Some failures are silent and are
-// checked here instead: opening a missing file does nothing, a .msh without a $MeshFormat header
-// is parsed as a .geo script, a Physical group naming a curve or point that does not exist is
-// dropped. gmsh state that survives gmsh::finalize(): the ONELAB database (so it is cleared before
-// and after each read), nothing else that matters here; the lock gmsh leaves set when an error
-// interrupts gmsh::open is reset by the next gmsh::initialize.
+// How gmsh 4.8.4 reports failures, and why errors are read from its logger instead of caught:
+// with General.AbortOnError >= 2 (gmsh::initialize sets 2) every gmsh error (Msg::Error) throws a
+// std::string holding the message, e.g. "'x.geo', line 2: Unknown variable 'x'" or "Could not read
+// nodes". But an exception thrown from inside the .geo parser leaves its lexer in the middle of
+// the failed file, and that survives gmsh::finalize: every later .geo read in the process then
+// fails with "line 0: syntax error". So errors are not thrown (AbortOnError = 0): gmsh finishes
+// each operation, the logger keeps every message ("Error: ...", "Warning: ..."), and each stage
+// here checks it. Anything still thrown (std::string, std::exception, other) is converted too.
+// Silent failures checked here instead: opening a missing file does nothing; a .msh without a
+// $MeshFormat header is parsed as a .geo script; a Physical group naming a curve or point that does
+// not exist is dropped. State that survives gmsh::finalize: the ONELAB database (cleared before and
+// after each read) and the parser's lexer (see above).
 #include "alphaflex/mesh/gmsh_reader.hpp"
 
 #include <gmsh.h>
@@ -21,7 +25,6 @@
 #include <fstream>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <unordered_map>
 #include <utility>
@@ -70,7 +73,7 @@ class GmshSession {
     gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
     try {
       gmsh::option::setNumber("General.Terminal", 0);
-      gmsh::option::setNumber("General.AbortOnError", 3);  // throw on every error, never exit
+      gmsh::option::setNumber("General.AbortOnError", 0);  // errors go to the logger only
       gmsh::onelab::clear();  // the database outlives gmsh::finalize (values of a previous read)
       gmsh::logger::start();
     } catch (...) {
@@ -117,44 +120,61 @@ class Reader {
     try {
       stage_ = "starting gmsh";
       session.emplace();
+      check_gmsh();
       MeshData mesh;
       mesh.file = path_;
       if (is_geo_) {
         stage_ = "reading the .geo (expected a valid gmsh geometry script)";
         for (const auto& [name, value] : options_.parameters) gmsh::onelab::setNumber(name, {value});
         gmsh::open(path_);
+        check_gmsh();
         mesh.parameters = check_parameters();
         stage_ = "meshing the .geo in 1D";
         mesh_geo();
+        check_gmsh();
       } else {
         stage_ = "reading the .msh (expected a valid gmsh MSH file)";
         gmsh::open(path_);
+        check_gmsh();
       }
       stage_ = "reading the mesh's physical groups";
       extract(mesh);
+      check_gmsh();
       mesh.warnings = GmshSession::logged("Warning: ");
       return mesh;
     } catch (const InputError&) {
       throw;
     } catch (const std::string& message) {
-      fail_gmsh(message);
+      fail_gmsh({message});
     } catch (const std::exception& e) {
-      fail_gmsh(e.what());
+      fail_gmsh({e.what()});
     } catch (...) {
       std::string last;
       try { gmsh::logger::getLastError(last); } catch (...) {}
-      fail_gmsh(last.empty() ? "unknown gmsh failure" : last);
+      fail_gmsh({last.empty() ? "unknown gmsh failure" : last});
     }
   }
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(prefix_ + what); }
 
-  /// A gmsh error: its own text, plus any other errors it logged on the way.
-  [[noreturn]] void fail_gmsh(const std::string& message) const {
-    std::string text = "gmsh failed while " + stage_ + ": " + message;
+  /// Fails with the errors gmsh logged so far, if any.
+  void check_gmsh() const {
+    const std::vector<std::string> errors = GmshSession::logged("Error: ");
+    if (!errors.empty()) fail_gmsh({});
+  }
+
+  /// A gmsh failure: `first` (a thrown message), then the errors gmsh logged, the first ones
+  /// (the cause; later ones are often its consequences).
+  [[noreturn]] void fail_gmsh(std::vector<std::string> first) const {
+    std::vector<std::string> errors = std::move(first);
     for (const std::string& e : GmshSession::logged("Error: "))
-      if (e != message) text += "; " + e;
+      if (std::find(errors.begin(), errors.end(), e) == errors.end()) errors.push_back(e);
+    constexpr size_t kShown = 3;
+    std::string text = "gmsh failed while " + stage_ + ": ";
+    for (size_t i = 0; i < errors.size() && i < kShown; ++i) text += (i ? "; " : "") + errors[i];
+    if (errors.size() > kShown) text += " (and " + std::to_string(errors.size() - kShown) + " more)";
+    if (errors.empty()) text += "unknown error";
     fail(text);
   }
 
@@ -194,8 +214,8 @@ class Reader {
       if (options_.element_size > 0) given.push_back("element_size");
       if (!options_.parameters.empty()) given.push_back("parameters");
       if (!given.empty())
-        fail(join(given) + (given.size() > 1 ? " apply" : " applies") +
-             " to a .geo only: a .msh is read as is (mesh the .geo instead, or mesh it again with gmsh)");
+        fail(join(given) + ": only for a .geo; a .msh is read as is, never re-meshed (use the .geo, "
+             "or mesh it again with gmsh)");
     } else if (options_.elements_per_curve > 0 && options_.element_size > 0) {
       fail("elements_per_curve and element_size exclude each other: give one");
     }
@@ -342,7 +362,7 @@ class Reader {
         auto [it, fresh] = segment_owner.emplace(key, element_tag);
         if (!fresh && it->second != element_tag)
           fail("physical group '" + g.name + "': elements " + std::to_string(it->second) + " and " +
-               std::to_string(element_tag) + " join the same nodes (" + std::to_string(a) + ", " +
+               std::to_string(element_tag) + " join the same gmsh nodes (" + std::to_string(a) + ", " +
                std::to_string(b) + "): expected each segment once (a MSH 2 file repeats the elements "
                "of a curve in several physical groups; save the mesh in MSH 4 format)");
         block.elements.push_back({local_id(a, g), local_id(b, g)});

@@ -61,7 +61,9 @@ struct MeshData {
 /// first use by the line blocks (by physical tag, gmsh element order), then the named points'
 /// nodes (by physical tag). Each call runs its own gmsh session (initialize ... finalize), so
 /// gmsh must not be used elsewhere in the process at the same time; concurrent calls from
-/// threads are serialized. It writes no file of its own: safe on every MPI rank at once.
+/// threads are serialized. It writes no file of its own, so every MPI rank may read the same file
+/// at once (gmsh's first initialize in a process makes FLTK rewrite its preference file, with the
+/// same content on every rank: meshes/README.md).
 MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context);
 
 }  // namespace alphaflex
