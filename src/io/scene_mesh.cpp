@@ -1,11 +1,154 @@
-// Beams from gmsh meshes (`mesh`, `beams`), spatial scenes only.
+// Beams from gmsh meshes (`mesh`, `beams`), spatial scenes only: physical line groups become beam
+// blocks (two-node geometrically exact beams), their mesh nodes become spatial frame nodes, and
+// named mesh points become nodes that joints, loads and sensors refer to by name.
+#include <filesystem>
+
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/geometrically_exact_beam.hpp"
+#include "alphaflex/mesh/gmsh_reader.hpp"
+#include "alphaflex/model/model.hpp"
 #include "scene_reader.hpp"
 
 namespace alphaflex::scene_detail {
+namespace {
 
-void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model&, const Eigen::Vector3d&) {
-  for (const char* k : {"mesh", "beams"})
-    if (root[k]) rd.fail(root[k], k, "reading beams from meshes is being wired in");
+BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key) {
+  if (!n.IsMap()) rd.fail(n, key, "expected a map of section properties");
+  try {
+    if (n["E"] || n["shape"]) {
+      rd.keys(n, key, {"E", "nu", "rho", "shape", "width", "height", "diameter", "wall_thickness"});
+      const double E = rd.positive(rd.need(n, "E", key), key + ".E", "Young's modulus (Pa)");
+      const double nu = rd.number(rd.need(n, "nu", key), key + ".nu");
+      const double rho = rd.positive(rd.need(n, "rho", key), key + ".rho", "density (kg/m^3)");
+      const std::string shape = rd.text(rd.need(n, "shape", key), key + ".shape");
+      SectionShape s;
+      if (shape == "rectangle") {
+        s = SectionShape::rectangle(rd.positive(rd.need(n, "width", key), key + ".width", "width (m)"),
+                                    rd.positive(rd.need(n, "height", key), key + ".height", "height (m)"));
+      } else if (shape == "circle") {
+        s = SectionShape::circle(rd.positive(rd.need(n, "diameter", key), key + ".diameter", "diameter (m)"));
+      } else if (shape == "tube") {
+        s = SectionShape::tube(rd.positive(rd.need(n, "diameter", key), key + ".diameter", "outer diameter (m)"),
+                               rd.positive(rd.need(n, "wall_thickness", key), key + ".wall_thickness", "wall thickness (m)"));
+      } else {
+        rd.fail(n["shape"], key + ".shape", "unknown shape '" + shape + "' (expected rectangle, circle, tube)");
+      }
+      return BeamSection::from_material(E, nu, rho, s);
+    }
+    rd.keys(n, key, {"EA", "GA2", "GA3", "GJ", "EI2", "EI3", "rhoA", "rhoI2", "rhoI3", "rhoI_polar"});
+    auto v = [&](const char* k, const char* what) { return rd.positive(rd.need(n, k, key), key + "." + k, what); };
+    std::optional<double> polar;
+    if (n["rhoI_polar"]) polar = rd.positive(n["rhoI_polar"], key + ".rhoI_polar", "polar mass moment per length (kg m)");
+    return BeamSection::from_properties(v("EA", "axial stiffness (N)"), v("GA2", "shear stiffness (N)"),
+                                        v("GA3", "shear stiffness (N)"), v("GJ", "torsional stiffness (N m^2)"),
+                                        v("EI2", "bending stiffness (N m^2)"), v("EI3", "bending stiffness (N m^2)"),
+                                        v("rhoA", "mass per length (kg/m)"), v("rhoI2", "mass moment per length (kg m)"),
+                                        v("rhoI3", "mass moment per length (kg m)"), polar);
+  } catch (const std::invalid_argument& e) {
+    rd.fail(n, key, e.what());
+  }
+}
+
+}  // namespace
+
+void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity) {
+  const YAML::Node mn = root["mesh"], bl = root["beams"];
+  if (!mn && !bl) return;
+  if (!mn) rd.fail(bl, "beams", "beams need a `mesh` (a .geo or .msh file with their physical groups)");
+  if (!bl) rd.fail(mn, "mesh", "no `beams` use this mesh (give beams: [{name, group, section, orientation}])");
+  rd.keys(mn, "mesh", {"file", "elements", "element_size", "parameters"});
+  const YAML::Node fn = rd.need(mn, "file", "mesh");
+  const std::string given = rd.text(fn, "mesh.file");
+  // Relative to the scene file's directory (inputs/x.yaml names ../meshes/y.geo).
+  std::filesystem::path path(given);
+  if (path.is_relative()) path = std::filesystem::path(rd.file()).parent_path() / path;
+  MeshOptions opt;
+  if (mn["elements"]) opt.elements_per_curve = rd.integer(mn["elements"], "mesh.elements", 1, 10000000);
+  if (mn["element_size"]) opt.element_size = rd.positive(mn["element_size"], "mesh.element_size", "element size (m)");
+  if (const YAML::Node p = mn["parameters"]) {
+    if (!p.IsMap()) rd.fail(p, "mesh.parameters", "expected a map name: value (DefineConstant names of the .geo)");
+    for (const auto& kv : p) {
+      const std::string k = kv.first.as<std::string>();
+      opt.parameters[k] = rd.number(kv.second, "mesh.parameters." + k);
+    }
+  }
+  MeshData mesh;
+  try {
+    std::ostringstream ctx;
+    ctx << rd.file() << ":" << (fn.Mark().line + 1) << ": mesh.file";
+    mesh = read_mesh(path.string(), opt, ctx.str());
+  } catch (const InputError&) {
+    throw;
+  }
+
+  if (!bl.IsSequence() || bl.size() == 0) rd.fail(bl, "beams", "expected a list of beams");
+  std::vector<int> node_of(mesh.points.size(), -1);  // mesh node → model node
+  std::map<int, std::string> point_name;
+  for (const auto& [name, id] : mesh.named_points) point_name[id] = name;
+  std::set<std::string> beam_names, groups_used;
+  for (size_t i = 0; i < bl.size(); ++i) {
+    const YAML::Node b = bl[i];
+    std::string path_b = "beams[" + std::to_string(i) + "]";
+    if (!b.IsMap()) rd.fail(b, path_b, "expected a map with name, group, section, orientation");
+    rd.keys(b, path_b, {"name", "group", "section", "orientation"});
+    const std::string name = rd.text(rd.need(b, "name", path_b), path_b + ".name");
+    path_b = "beams[" + name + "]";
+    if (!beam_names.insert(name).second) rd.fail(b["name"], path_b + ".name", "a beam named '" + name + "' exists already");
+    const std::string group = rd.text(rd.need(b, "group", path_b), path_b + ".group");
+    const MeshLineBlock* block = mesh.find_line_block(group);
+    if (!block) {
+      std::string known;
+      for (const auto& lb : mesh.line_blocks) known += (known.empty() ? "" : ", ") + lb.name;
+      rd.fail(b["group"], path_b + ".group",
+              "mesh '" + given + "' has no physical curve group '" + group + "' (its curve groups: " +
+                  (known.empty() ? "none" : known) + ")");
+    }
+    if (!groups_used.insert(group).second)
+      rd.fail(b["group"], path_b + ".group", "group '" + group + "' is used by another beam already");
+    const BeamSection section = read_section(rd, rd.need(b, "section", path_b), path_b + ".section");
+    const Eigen::Vector3d orient = rd.direction(rd.need(b, "orientation", path_b), path_b + ".orientation");
+    for (size_t e = 0; e < block->elements.size(); ++e) {
+      const int ma = block->elements[e][0], mb = block->elements[e][1];
+      const Eigen::Vector3d xa = mesh.points[static_cast<size_t>(ma)], xb = mesh.points[static_cast<size_t>(mb)];
+      Eigen::Matrix3d sec;
+      if (!frame_from(xb - xa, orient, sec)) {
+        std::ostringstream os;
+        os << "is parallel to element " << block->element_tags[e] << " of group '" << group << "' (or the element has zero length); "
+           << "the orientation vector fixes section axis 2 and must not lie along the beam";
+        rd.fail(b["orientation"], path_b + ".orientation", os.str());
+      }
+      // Model nodes for the mesh nodes (once each; a node's frame is the section frame of the
+      // first element that reaches it, and each element keeps its own offset from it).
+      for (int m : {ma, mb}) {
+        if (node_of[static_cast<size_t>(m)] >= 0) continue;
+        Node nd;
+        nd.kind = NodeKind::Frame3D;
+        const auto pn = point_name.find(m);
+        nd.name = pn != point_name.end() ? pn->second : name + ":" + std::to_string(mesh.node_tags[static_cast<size_t>(m)]);
+        if (model.find_node(nd.name) >= 0)
+          rd.fail(b, path_b, "mesh point '" + nd.name + "' has the name of another node or body");
+        nd.q0.resize(7);
+        store_pose(mesh.points[static_cast<size_t>(m)], sec, nd.q0.data());
+        nd.v0 = Eigen::VectorXd::Zero(6);
+        node_of[static_cast<size_t>(m)] = model.add_node(nd);
+      }
+      const int na = node_of[static_cast<size_t>(ma)], nb = node_of[static_cast<size_t>(mb)];
+      try {
+        model.add_element(std::make_unique<GeometricallyExactBeam>(
+            name + "[" + std::to_string(e) + "]", na, nb, section, pose_of(model.node(na).q0.data()),
+            pose_of(model.node(nb).q0.data()), sec, sec, gravity));
+      } catch (const std::invalid_argument& ex) {
+        std::ostringstream os;
+        os << "element " << block->element_tags[e] << " of group '" << group << "': " << ex.what();
+        rd.fail(b["group"], path_b + ".group", os.str());
+      }
+    }
+  }
+  // Named points must be beam nodes: a point on no beam would be a node nothing holds.
+  for (const auto& [pname, id] : mesh.named_points)
+    if (node_of[static_cast<size_t>(id)] < 0)
+      rd.fail(fn, "mesh.file",
+              "named point '" + pname + "' is on none of the beams' groups (an unconnected node); put it on a beam's curve or remove it");
 }
 
 }  // namespace alphaflex::scene_detail
