@@ -37,12 +37,13 @@ inline size_t column(const RunSummary& r, const std::string& name) {
 /// Value of sensor `name` at the final time.
 inline double final_value(const RunSummary& r, const std::string& name) { return r.final_sensors[column(r, name)]; }
 
-/// A CSV with a header row: column name → values.
+/// A CSV with a header row (after optional '#' comment lines): column name → values.
 inline std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot open " + path);
   std::string line;
-  std::getline(in, line);
+  while (std::getline(in, line) && !line.empty() && line[0] == '#') {
+  }  // comment lines (source and method) before the header
   std::vector<std::string> names;
   std::stringstream hs(line);
   for (std::string c; std::getline(hs, c, ',');) names.push_back(c);

@@ -1,0 +1,73 @@
+// Static beam benchmarks through the whole program (scene → gmsh → beams → quasi-static solver):
+//  - roll-up by an end moment k·2πEI/L: the exact shape is a circle of radius EI/M (analytic);
+//  - the Euler elastica under a dead tip force, PL²/EI = 1 … 10, against the independent reference
+//    tests/reference/elastica.csv (scripts/reference/elastica.py: shooting and elliptic integrals,
+//    agreeing with Mattiasson 1981, Table 1), with second-order convergence in the element size.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_support.hpp"
+
+namespace alphaflex {
+namespace {
+
+using testing::column;
+using testing::fitted_slope;
+using testing::read_csv;
+using testing::run_scene;
+using testing::source_path;
+
+// Circle of radius R = EI/M = L/(2πk) through the root, tangent to x there: the tip is at
+// (R sin φ, R(1 − cos φ), 0) with φ = 2πk. Two-node SE(3) elements represent constant curvature
+// exactly, so the error is round-off and Newton tolerance for every element count.
+TEST(BeamRollup, TipOnTheExactCircleForEveryElementCountAndMoment) {
+  for (double k : {0.25, 0.5, 1.0, 2.0}) {
+    for (int n : {1, 4, 16}) {
+      // One element spans an angle 2πk/n; the SE(3) logarithm is unique below π: n > 2k.
+      if (n <= 2.0 * k) continue;
+      const RunSummary r = run_scene("beam_rollup", {"load.factor=" + std::to_string(k),
+                                                     "mesh.elements=" + std::to_string(n),
+                                                     "solver.static.steps=" + std::to_string(static_cast<int>(16 * k))});
+      const double R = 1.0 / (2.0 * M_PI * k), phi = 2.0 * M_PI * k;
+      const double ex = R * std::sin(phi), ey = R * (1.0 - std::cos(phi));
+      const double err = std::hypot(r.final_sensors[column(r, "tip_x")] - ex, r.final_sensors[column(r, "tip_y")] - ey);
+      std::printf("roll-up k = %.2f, %2d elements: tip error %.2e m (%d load steps, %ld Newton iterations)\n", k, n,
+                  err, r.steps, r.newton_total);
+      EXPECT_LT(err, 1e-9) << "k = " << k << ", n = " << n;
+      EXPECT_LT(std::fabs(r.final_sensors[column(r, "tip_z")]), 1e-12);
+      // The clamp carries the end moment, M = k 2π EI/L (equilibrium of the whole beam).
+      EXPECT_NEAR(r.final_sensors[column(r, "root_moment")], -2.0 * M_PI * k, 1e-9);
+    }
+  }
+}
+
+// Tip displacement at PL²/EI = 1 … 10 (the load path: one load step per unit of PL²/EI) against the
+// elastica; the error at PL²/EI = 10 falls like h² (fitted slope).
+TEST(BeamElastica, TipDisplacementConvergesToTheElasticaWithOrderTwo) {
+  const auto ref = read_csv(source_path("tests/reference/elastica.csv"));
+  std::vector<double> h, err;
+  for (int n : {4, 8, 16, 32}) {
+    const RunSummary r = run_scene("beam_elastica", {"mesh.elements=" + std::to_string(n)});
+    ASSERT_EQ(r.sensor_history.size(), 11u);  // load factor 0, 0.1, …, 1
+    double worst = 0.0;
+    for (size_t k = 1; k <= 10; ++k) {
+      const double ux = r.sensor_history[k][column(r, "tip_ux")], uy = r.sensor_history[k][column(r, "tip_uy")];
+      EXPECT_NEAR(r.times_out[k] * 10.0, ref.at("load")[k - 1], 1e-9);
+      worst = std::max(worst, std::hypot(ux - ref.at("tip_ux")[k - 1], uy - ref.at("tip_uy")[k - 1]));
+    }
+    const double ux = r.final_sensors[column(r, "tip_ux")], uy = r.final_sensors[column(r, "tip_uy")];
+    const double e10 = std::hypot(ux - ref.at("tip_ux")[9], uy - ref.at("tip_uy")[9]);
+    std::printf("elastica %2d elements: tip error at PL^2/EI = 10: %.3e m, worst over 1..10: %.3e m (%ld Newton its)\n",
+                n, e10, worst, r.newton_total);
+    h.push_back(1.0 / n);
+    err.push_back(e10);
+    if (n == 32) EXPECT_LT(worst, 2e-4);  // 0.03 % of the tip deflection
+  }
+  const double slope = fitted_slope(h, err);
+  std::printf("elastica: fitted order %.2f\n", slope);
+  EXPECT_NEAR(slope, 2.0, 0.2);
+}
+
+}  // namespace
+}  // namespace alphaflex
