@@ -8,8 +8,8 @@ RigidBody2D::RigidBody2D(std::string name, int node, double mass, double inertia
     : Element(std::move(name), {node}), m_(mass), j_(inertia), g_(std::move(gravity)) {}
 
 void RigidBody2D::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
-  out.r[0] += m_ * (s.qdd[0] - g_.x());
-  out.r[1] += m_ * (s.qdd[1] - g_.y());
+  out.r[0] += m_ * (s.qdd[0] - s.load_factor * g_.x());
+  out.r[1] += m_ * (s.qdd[1] - s.load_factor * g_.y());
   out.r[2] += j_ * s.qdd[2];
   if (tangent) {
     out.M(0, 0) += m_;
@@ -28,7 +28,7 @@ PointMass::PointMass(std::string name, int node, const Node& n, double mass, Eig
 }
 
 void PointMass::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
-  out.r += mass_matrix_ * s.qdd - weight_;
+  out.r += mass_matrix_ * s.qdd - s.load_factor * weight_;
   if (tangent) out.M += mass_matrix_;
 }
 

@@ -1,0 +1,117 @@
+#pragma once
+// The geometrically exact (Simo–Reissner) beam as a two-node element on SE(3) (Sonneville,
+// Cardona & Brüls, Comput. Methods Appl. Mech. Engrg. 268, 2014; docs/theory/beam.md).
+//
+// Nodes: two Frame3D nodes A, B (node.hpp), pose (x_i, R_i), unknowns δx (world) and δθ (body).
+// The section frame at end i is R_i O_i with a constant offset O_i = R_i0ᵀ R_sec,i fixed in the
+// reference configuration, so that node frames (e.g. a rigid body's principal axes) need not be
+// section frames. Section axes: 1 along the beam, 2 and 3 in the section (beam_section.hpp).
+//
+// Strain (Sonneville et al. 2014, Sec. 4): with H_i = (R_i O_i, x_i) ∈ SE(3),
+//   d = log_SE(3)(H_A⁻¹ H_B) = (U, θ),  θ = log_SO(3)(O_Aᵀ R_Aᵀ R_B O_B),
+//   p = O_Aᵀ R_Aᵀ (x_B − x_A) = J_l(θ) U,  J_l(θ) = T(θ)ᵀ (rotation.hpp),
+//   ε = (d − d0)/L0 = (axial, shear 2, shear 3, twist, curvature 2, curvature 3),
+// where d0 is d in the reference and L0 = |U0| is the reference arc length (the chord of a straight
+// element). ε is constant on the element: it is the strain of the unique constant-strain (helical)
+// beam through the two end frames, hence objective, exact for every constant-strain state (pure
+// bending, torsion, helices) and free of shear locking (the shear strain is the chord's tilt
+// relative to the mean section, not an interpolated field).
+//
+// Residual (convention of element.hpp, r = M q̈ − g with internal forces positive):
+//   r = ∂W/∂δ + r_inertia − r_gravity,   W = (L0/2) εᵀ C ε,  C = diag(EA, GA2, GA3, GJ, EI2, EI3).
+// The elastic part and its tangent K are exact derivatives of W by automatic differentiation
+// (spatial_kernel.hpp: kernel_jacobian for r, kernel_second for K).
+//
+// Inertia (consistent, with rotary inertia; velocities interpolated linearly, N_A = 1 − s/L0,
+// N_B = s/L0):
+//   translation: r_x,i = Σ_j ρA L0 m_ij ẍ_j,  m = [[1/3, 1/6], [1/6, 1/3]];
+//   rotation:    Ω̄_i = O_iᵀ Ω_i (section components), Ω̄(s) = N_A Ω̄_A + N_B Ω̄_B,
+//                r̄_i = ∫₀^L0 N_i (J̄ Ω̄̇(s) + Ω̄(s) × J̄ Ω̄(s)) ds,  r_θ,i = O_i r̄_i,
+//                J̄ = diag(ρI_polar, ρI2, ρI3) (BeamSection::rotary_inertia),
+// integrated exactly (the integrand is a cubic in s: 2-point Gauss). M and C are exact.
+// Approximation: Ω̄_A and Ω̄_B are components in two different section frames; interpolating them
+// as if both ends shared one frame ignores the element's relative rotation θ. The error is
+// O(|θ|) = O(L0 κ) and vanishes under mesh refinement; for a rigid motion of a straight element
+// (θ = 0) the kinetic energy is exact.
+//
+// Gravity: lumped consistently for the linear interpolation, −ρA L0/2 g on each node's translation,
+// times the load factor.
+//
+// Limitation: log_SO(3) is continuous for |θ| < π; the element's relative rotation between its end
+// sections must stay below π (refine the mesh well before).
+#include <Eigen/Dense>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/beam_section.hpp"
+#include "alphaflex/model/element.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
+
+namespace alphaflex {
+
+template <class S> using Vec6 = Eigen::Matrix<S, 6, 1>;
+
+/// log_SE(3) of (R, p) in the (translation, rotation) order: θ = log(R), U = J_l(θ)⁻¹ p with
+/// J_l(θ)⁻¹ = T⁻¹(θ)ᵀ = I − ½θ̂ + (1 − (θ/2)cot(θ/2))/θ² θ̂² (series near θ = 0 in rotation.hpp,
+/// so values and first and second AD derivatives are exact at θ = 0). Defined for |θ| < π.
+template <class S>
+Vec6<S> se3_log(const Mat3<S>& R, const Vec3<S>& p) {
+  const Vec3<S> th = log_so3<S>(R);
+  Vec6<S> d;
+  d.template head<3>() = tangent_so3_inverse<S>(th).transpose() * p;
+  d.template tail<3>() = th;
+  return d;
+}
+
+class GeometricallyExactBeam final : public Element {
+ public:
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+  /// `pose_a`, `pose_b`: the nodes' poses in the reference (stress-free) configuration;
+  /// `section_a`, `section_b`: the section frames at the two ends in that configuration (world
+  /// components, column 1 along the beam axis); `gravity` in m/s². Throws std::invalid_argument for
+  /// equal node ids, section frames that are not rotations, a zero reference length, or a relative
+  /// rotation between the end sections of π or more.
+  GeometricallyExactBeam(std::string name, int node_a, int node_b, const BeamSection& section,
+                         const Pose<double>& pose_a, const Pose<double>& pose_b, const Eigen::Matrix3d& section_a,
+                         const Eigen::Matrix3d& section_b, const Eigen::Vector3d& gravity);
+
+  const char* type() const override { return "beam"; }
+  void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+
+  /// {N, V2, V3, T, M2, M3, axial_strain, shear_strain_2, shear_strain_3, twist, curvature_2,
+  /// curvature_3}: section forces C ε (N, N·m) and strains ε, constant on the element, section frame.
+  std::vector<std::string> output_names() const override;
+  void output(const LocalState& s, Eigen::VectorXd& values) const override;
+
+  /// ε at the configuration q (14 numbers: two poses).
+  Vector6d strain(const Eigen::VectorXd& q) const;
+  /// W = (L0/2) εᵀ C ε (J).
+  double elastic_energy(const Eigen::VectorXd& q) const;
+
+  /// ε at the given poses of nodes A and B (what the AD kernels differentiate); instantiated for
+  /// double, ad::AD1 and ad::AD2.
+  template <class S>
+  Vec6<S> strain_of(const Pose<S>& a, const Pose<S>& b) const;
+
+  const BeamSection& section() const { return section_; }
+  double reference_length() const { return L0_; }
+  /// O_i = R_i0ᵀ R_sec,i (end 0 = A, 1 = B): the section frame at end i is R_i O_i.
+  const Eigen::Matrix3d& section_offset(int end) const { return offset_[static_cast<size_t>(end)]; }
+  /// d0/L0, the strain measure of the reference configuration (its curvature and twist).
+  const Vector6d& reference_strain() const { return eps0_; }
+  const Eigen::Vector3d& gravity() const { return g_; }
+
+ private:
+  void add_inertia(const LocalState& s, LocalResidual& out, bool tangent) const;
+
+  BeamSection section_;
+  std::array<Eigen::Matrix3d, 2> offset_;
+  double L0_ = 0.0;
+  Vector6d eps0_ = Vector6d::Zero();
+  Eigen::Vector3d g_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace alphaflex

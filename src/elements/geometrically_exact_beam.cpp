@@ -1,0 +1,168 @@
+#include "alphaflex/elements/geometrically_exact_beam.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace alphaflex {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Throws unless R is a rotation matrix (orthonormal, det +1) to 1e-9.
+void require_rotation(const Eigen::Matrix3d& R, const std::string& what) {
+  const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (!R.allFinite() || orth > 1e-9 || R.determinant() < 0.0) {
+    std::ostringstream m;
+    m << what << " is not a rotation matrix (|RᵀR − I| = " << orth << ", det = " << R.determinant() << ")";
+    throw std::invalid_argument(m.str());
+  }
+}
+
+/// The elastic energy W(q) = (L0/2) εᵀ C ε as a spatial kernel (spatial_kernel.hpp): its
+/// kernel_jacobian is r = ∂W/∂δ, its kernel_second with weight 1 is K = ∂r/∂δ'.
+struct ElasticEnergy {
+  const GeometricallyExactBeam& beam;
+
+  template <class S>
+  void operator()(const Pose<S>* frames, const S& /*t*/, KernelVector<S>& out) const {
+    const Vec6<S> e = beam.strain_of<S>(frames[0], frames[1]);
+    const auto& c = beam.section().stiffness();
+    S w = S(0);
+    for (int k = 0; k < 6; ++k) w += S(c[k]) * e[k] * e[k];
+    out.resize(1);
+    out[0] = S(0.5 * beam.reference_length()) * w;
+  }
+};
+
+/// m_ij = ∫ N_i N_j ds / L0 for linear shape functions.
+constexpr double kMass[2][2] = {{1.0 / 3.0, 1.0 / 6.0}, {1.0 / 6.0, 1.0 / 3.0}};
+
+}  // namespace
+
+GeometricallyExactBeam::GeometricallyExactBeam(std::string name, int node_a, int node_b, const BeamSection& section,
+                                               const Pose<double>& pose_a, const Pose<double>& pose_b,
+                                               const Eigen::Matrix3d& section_a, const Eigen::Matrix3d& section_b,
+                                               const Eigen::Vector3d& gravity)
+    : Element(std::move(name), {node_a, node_b}), section_(section), g_(gravity) {
+  if (node_a == node_b) throw std::invalid_argument("a beam element needs two different nodes");
+  require_rotation(pose_a.R, "the rotation of node A");
+  require_rotation(pose_b.R, "the rotation of node B");
+  require_rotation(section_a, "the section frame at end A");
+  require_rotation(section_b, "the section frame at end B");
+  offset_[0] = pose_a.R.transpose() * section_a;
+  offset_[1] = pose_b.R.transpose() * section_b;
+  // The reference strain measure d0 with L0 = 1, then L0 = |U0|: the arc length of the reference
+  // helix x(σ) = x_A + R_secA ∫₀^σ exp(τ θ0^) dτ U0, σ ∈ [0, 1], whose tangent has length |U0|.
+  const Eigen::Matrix3d Rrel = section_a.transpose() * section_b;
+  const Eigen::Vector3d th0 = log_so3<double>(Rrel);
+  if (th0.norm() > kPi - 1e-6) {
+    std::ostringstream m;
+    m << "the end sections of the beam element turn by " << th0.norm()
+      << " rad relative to each other; log SE(3) needs less than pi: use shorter elements";
+    throw std::invalid_argument(m.str());
+  }
+  const Vector6d d0 = se3_log<double>(Rrel, section_a.transpose() * (pose_b.x - pose_a.x));
+  L0_ = d0.head<3>().norm();
+  const double scale = std::max({1.0, pose_a.x.norm(), pose_b.x.norm()});
+  if (!(L0_ > 1e-12 * scale)) throw std::invalid_argument("the beam element has zero reference length");
+  eps0_ = d0 / L0_;
+}
+
+template <class S>
+Vec6<S> GeometricallyExactBeam::strain_of(const Pose<S>& a, const Pose<S>& b) const {
+  // Section frames R_i O_i; H_A⁻¹ H_B = (R_sAᵀ R_sB, R_sAᵀ (x_B − x_A)).
+  const Mat3<S> RsA = a.R * offset_[0].cast<S>();
+  const Mat3<S> RsB = b.R * offset_[1].cast<S>();
+  const Vec6<S> d = se3_log<S>(Mat3<S>(RsA.transpose() * RsB), Vec3<S>(RsA.transpose() * (b.x - a.x)));
+  return d / S(L0_) - eps0_.cast<S>();
+}
+
+template Vec6<double> GeometricallyExactBeam::strain_of<double>(const Pose<double>&, const Pose<double>&) const;
+template Vec6<ad::AD1> GeometricallyExactBeam::strain_of<ad::AD1>(const Pose<ad::AD1>&, const Pose<ad::AD1>&) const;
+template Vec6<ad::AD2> GeometricallyExactBeam::strain_of<ad::AD2>(const Pose<ad::AD2>&, const Pose<ad::AD2>&) const;
+
+GeometricallyExactBeam::Vector6d GeometricallyExactBeam::strain(const Eigen::VectorXd& q) const {
+  return strain_of<double>(pose_of(q.data()), pose_of(q.data() + 7));
+}
+
+double GeometricallyExactBeam::elastic_energy(const Eigen::VectorXd& q) const {
+  const Vector6d e = strain(q);
+  return 0.5 * L0_ * e.dot(section_.stiffness().cwiseProduct(e));
+}
+
+void GeometricallyExactBeam::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+  const ElasticEnergy energy{*this};
+  Eigen::VectorXd w;
+  Eigen::MatrixXd dW;
+  kernel_jacobian(energy, s.q, s.t, w, dW);
+  out.r += dW.row(0).transpose();
+  if (tangent) {
+    Eigen::MatrixXd K;
+    kernel_second(energy, s.q, s.t, Eigen::VectorXd::Ones(1), K);
+    out.K += K;
+  }
+  add_inertia(s, out, tangent);
+  // Gravity, consistent for linear interpolation: ∫ N_i ρA g ds = ρA L0/2 g.
+  const Eigen::Vector3d fg = s.load_factor * 0.5 * section_.rhoA() * L0_ * g_;
+  out.r.segment<3>(0) -= fg;
+  out.r.segment<3>(6) -= fg;
+}
+
+void GeometricallyExactBeam::add_inertia(const LocalState& s, LocalResidual& out, bool tangent) const {
+  const double mA = section_.rhoA() * L0_;
+  const Eigen::Matrix3d J = section_.rotary_inertia();
+  // Section angular velocities and accelerations Ω̄_i = O_iᵀ Ω_i, Ω̄̇_i = O_iᵀ Ω̇_i.
+  std::array<Eigen::Vector3d, 2> W, Wd;
+  for (int i = 0; i < 2; ++i) {
+    W[i] = offset_[i].transpose() * s.v.segment<3>(6 * i + 3);
+    Wd[i] = offset_[i].transpose() * s.qdd.segment<3>(6 * i + 3);
+  }
+  std::array<Eigen::Vector3d, 2> rbar{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<std::array<Eigen::Matrix3d, 2>, 2> cbar;
+  for (auto& row : cbar)
+    for (auto& c : row) c.setZero();
+  // Linear in the accelerations: ∫ N_i N_j ds J̄ Ω̄̇_j.
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      out.r.segment<3>(6 * i) += mA * kMass[i][j] * s.qdd.segment<3>(6 * j);
+      rbar[i] += L0_ * kMass[i][j] * (J * Wd[j]);
+    }
+  // Gyroscopic: ∫ N_i Ω̄(s) × J̄ Ω̄(s) ds, a cubic in s, and its derivative
+  // ∂/∂Ω̄_j = ∫ N_i N_j (Ω̄^ J̄ − (J̄ Ω̄)^) ds, a cubic as well: 2-point Gauss is exact.
+  const double gp = 0.5 / std::sqrt(3.0);
+  for (const double xi : {0.5 - gp, 0.5 + gp}) {
+    const double N[2] = {1.0 - xi, xi}, weight = 0.5 * L0_;
+    const Eigen::Vector3d Ws = N[0] * W[0] + N[1] * W[1], JW = J * Ws;
+    const Eigen::Vector3d gyro = Ws.cross(JW);
+    const Eigen::Matrix3d dgyro = hat<double>(Ws) * J - hat<double>(JW);
+    for (int i = 0; i < 2; ++i) {
+      rbar[i] += weight * N[i] * gyro;
+      for (int j = 0; j < 2; ++j) cbar[i][j] += weight * N[i] * N[j] * dgyro;
+    }
+  }
+  for (int i = 0; i < 2; ++i) out.r.segment<3>(6 * i + 3) += offset_[i] * rbar[i];
+  if (!tangent) return;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      out.M.block<3, 3>(6 * i, 6 * j) += mA * kMass[i][j] * Eigen::Matrix3d::Identity();
+      out.M.block<3, 3>(6 * i + 3, 6 * j + 3) += L0_ * kMass[i][j] * offset_[i] * J * offset_[j].transpose();
+      out.C.block<3, 3>(6 * i + 3, 6 * j + 3) += offset_[i] * cbar[i][j] * offset_[j].transpose();
+    }
+}
+
+std::vector<std::string> GeometricallyExactBeam::output_names() const {
+  return {"N", "V2", "V3", "T", "M2", "M3", "axial_strain", "shear_strain_2", "shear_strain_3",
+          "twist", "curvature_2", "curvature_3"};
+}
+
+void GeometricallyExactBeam::output(const LocalState& s, Eigen::VectorXd& values) const {
+  const Vector6d e = strain(s.q);
+  values.resize(12);
+  values.head<6>() = section_.stiffness().cwiseProduct(e);
+  values.tail<6>() = e;
+}
+
+}  // namespace alphaflex
