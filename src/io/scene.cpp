@@ -189,9 +189,34 @@ void read_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& mo
                                                              PlanarMarker::ground(loc)));
       continue;
     }
+    if (type == "fixed") {
+      rd.keys(j, path, {"name", "type", "body1", "point1", "body2", "point2", "location"});
+      const int b1 = sb.body(j, "body1", path, false);
+      const int b2 = j["body2"] ? sb.body(j, "body2", path, true) : -1;
+      if (b1 == b2) rd.fail(j["body2"], path + ".body2", "a joint needs two different bodies");
+      for (int b : {b1, b2})
+        if (b >= 0 && !model.node(b).has_angle())
+          rd.fail(j, path, "a fixed joint locks the rotation: '" + model.node(b).name + "' must be a rigid_body or beam node");
+      Eigen::Vector2d s1, s2;
+      if (j["location"]) {
+        if (j["point1"] || j["point2"]) rd.fail(j["location"], path + ".location", "give either location or point1/point2");
+        const Eigen::Vector2d loc = rd.vec2(j["location"], path + ".location");
+        s1 = sb.to_local(b1, loc);
+        s2 = sb.to_local(b2, loc);
+      } else {
+        s1 = rd.vec2(j, "point1", path, Eigen::Vector2d::Zero());
+        s2 = j["point2"] ? rd.vec2(j["point2"], path + ".point2")
+                         : (b2 < 0 ? sb.initial_position(b1, s1) : sb.to_local(b2, sb.initial_position(b1, s1)));
+      }
+      const auto nodes = node_list(b1, b2);
+      const double th0 = model.node(b1).q0[2] - (b2 >= 0 ? model.node(b2).q0[2] : 0.0);
+      model.add_constraint(std::make_unique<FixedJoint2D>(name, nodes, sb.marker(b1, s1, nodes, j, path + ".point1"),
+                                                          sb.marker(b2, s2, nodes, j, path + ".point2"), th0));
+      continue;
+    }
     if (type != "revolute" && type != "point_on_line" && type != "prismatic")
       rd.fail(j["type"], path + ".type",
-              "unknown joint type '" + type + "' (expected revolute, fixed_point, point_on_line, prismatic)");
+              "unknown joint type '" + type + "' (expected revolute, fixed_point, fixed, point_on_line, prismatic)");
     const bool line = type != "revolute";
     std::set<std::string> allowed{"name", "type", "body1", "point1", "body2", "point2", "location"};
     if (line) allowed.insert("axis");
@@ -437,13 +462,10 @@ Scene build(const YAML::Node& root, const std::string& label,
   scene.model->name = scene.name;
   SceneBuilder sb(rd, *scene.model);
   if (rs.dimension == 2) {
-    for (const char* k : {"mesh", "beams"})
-      if (root[k]) rd.fail(root[k], k, "beams and meshes need a spatial scene: add `dimension: 3`");
-    if (rs.analysis == Analysis::Static || rs.initial_static)
-      rd.fail(root["solver"], "solver", "static analysis is available for spatial scenes (dimension: 3)");
     const Eigen::Vector2d gravity = rd.vec2(root, "gravity", "", Eigen::Vector2d::Zero());
+    scene_detail::read_planar_mesh_and_beams(rd, root, *scene.model, gravity);
     read_bodies(rd, root["bodies"], *scene.model, gravity);
-    if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies");
+    if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies and no beams");
     read_joints(rd, sb, root["joints"], *scene.model);
     read_forces(rd, sb, root["forces"], *scene.model);
     read_sensors(rd, sb, root["sensors"], *scene.model);

@@ -5,6 +5,7 @@
 
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
+#include "alphaflex/elements/planar_beam.hpp"
 #include "alphaflex/mesh/gmsh_reader.hpp"
 #include "alphaflex/model/model.hpp"
 #include "scene_reader.hpp"
@@ -49,13 +50,8 @@ BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key
   }
 }
 
-}  // namespace
-
-void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity) {
-  const YAML::Node mn = root["mesh"], bl = root["beams"];
-  if (!mn && !bl) return;
-  if (!mn) rd.fail(bl, "beams", "beams need a `mesh` (a .geo or .msh file with their physical groups)");
-  if (!bl) rd.fail(mn, "mesh", "no `beams` use this mesh (give beams: [{name, group, section, orientation}])");
+/// Reads `mesh` (path relative to the scene file) with the scene's options.
+MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
   rd.keys(mn, "mesh", {"file", "elements", "element_size", "parameters"});
   const YAML::Node fn = rd.need(mn, "file", "mesh");
   const std::string given = rd.text(fn, "mesh.file");
@@ -72,15 +68,42 @@ void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const
       opt.parameters[k] = rd.number(kv.second, "mesh.parameters." + k);
     }
   }
-  MeshData mesh;
-  try {
-    std::ostringstream ctx;
-    ctx << rd.file() << ":" << (fn.Mark().line + 1) << ": mesh.file";
-    mesh = read_mesh(path.string(), opt, ctx.str());
-  } catch (const InputError&) {
-    throw;
-  }
+  std::ostringstream ctx;
+  ctx << rd.file() << ":" << (fn.Mark().line + 1) << ": mesh.file";
+  return read_mesh(path.string(), opt, ctx.str());
+}
 
+/// The line block named by a beam's `group`, or a clear error listing the mesh's curve groups.
+const MeshLineBlock& find_group(Reader& rd, const MeshData& mesh, const YAML::Node& b, const std::string& path_b,
+                                const std::string& group) {
+  const MeshLineBlock* block = mesh.find_line_block(group);
+  if (!block) {
+    std::string known;
+    for (const auto& lb : mesh.line_blocks) known += (known.empty() ? "" : ", ") + lb.name;
+    rd.fail(b["group"], path_b + ".group",
+            "mesh '" + mesh.file + "' has no physical curve group '" + group + "' (its curve groups: " +
+                (known.empty() ? "none" : known) + ")");
+  }
+  return *block;
+}
+
+/// Named points must be beam nodes: a point on no beam would be a node nothing holds.
+void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, const std::vector<int>& node_of) {
+  for (const auto& [pname, id] : mesh.named_points)
+    if (node_of[static_cast<size_t>(id)] < 0)
+      rd.fail(mn["file"], "mesh.file",
+              "named point '" + pname + "' is on none of the beams' groups (an unconnected node); put it on a beam's curve or remove it");
+}
+
+}  // namespace
+
+void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity) {
+  const YAML::Node mn = root["mesh"], bl = root["beams"];
+  if (!mn && !bl) return;
+  if (!mn) rd.fail(bl, "beams", "beams need a `mesh` (a .geo or .msh file with their physical groups)");
+  if (!bl) rd.fail(mn, "mesh", "no `beams` use this mesh (give beams: [{name, group, section, orientation}])");
+  const MeshData mesh = load_mesh(rd, mn);
+  const YAML::Node fn = mn["file"];
   if (!bl.IsSequence() || bl.size() == 0) rd.fail(bl, "beams", "expected a list of beams");
   std::vector<int> node_of(mesh.points.size(), -1);  // mesh node → model node
   std::map<int, std::string> point_name;
@@ -95,14 +118,7 @@ void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const
     path_b = "beams[" + name + "]";
     if (!beam_names.insert(name).second) rd.fail(b["name"], path_b + ".name", "a beam named '" + name + "' exists already");
     const std::string group = rd.text(rd.need(b, "group", path_b), path_b + ".group");
-    const MeshLineBlock* block = mesh.find_line_block(group);
-    if (!block) {
-      std::string known;
-      for (const auto& lb : mesh.line_blocks) known += (known.empty() ? "" : ", ") + lb.name;
-      rd.fail(b["group"], path_b + ".group",
-              "mesh '" + given + "' has no physical curve group '" + group + "' (its curve groups: " +
-                  (known.empty() ? "none" : known) + ")");
-    }
+    const MeshLineBlock* block = &find_group(rd, mesh, b, path_b, group);
     if (!groups_used.insert(group).second)
       rd.fail(b["group"], path_b + ".group", "group '" + group + "' is used by another beam already");
     const BeamSection section = read_section(rd, rd.need(b, "section", path_b), path_b + ".section");
@@ -144,11 +160,82 @@ void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const
       }
     }
   }
-  // Named points must be beam nodes: a point on no beam would be a node nothing holds.
-  for (const auto& [pname, id] : mesh.named_points)
-    if (node_of[static_cast<size_t>(id)] < 0)
-      rd.fail(fn, "mesh.file",
-              "named point '" + pname + "' is on none of the beams' groups (an unconnected node); put it on a beam's curve or remove it");
+  check_named_points(rd, mn, mesh, node_of);
+}
+
+void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector2d& gravity) {
+  const YAML::Node mn = root["mesh"], bl = root["beams"];
+  if (!mn && !bl) return;
+  if (!mn) rd.fail(bl, "beams", "beams need a `mesh` (a .geo or .msh file with their physical groups)");
+  if (!bl) rd.fail(mn, "mesh", "no `beams` use this mesh (give beams: [{name, group, section}])");
+  const MeshData mesh = load_mesh(rd, mn);
+  for (size_t k = 0; k < mesh.points.size(); ++k)
+    if (std::fabs(mesh.points[k].z()) > 1e-12 * std::max(1.0, mesh.points[k].norm()))
+      rd.fail(mn["file"], "mesh.file",
+              "node " + std::to_string(mesh.node_tags[k]) + " is not in the x-y plane (z = " +
+                  std::to_string(mesh.points[k].z()) + "); a planar scene needs a planar mesh (or use dimension: 3)");
+  if (!bl.IsSequence() || bl.size() == 0) rd.fail(bl, "beams", "expected a list of beams");
+  std::vector<int> node_of(mesh.points.size(), -1);
+  std::map<int, std::string> point_name;
+  for (const auto& [name, id] : mesh.named_points) point_name[id] = name;
+  std::set<std::string> beam_names, groups_used;
+  for (size_t i = 0; i < bl.size(); ++i) {
+    const YAML::Node b = bl[i];
+    std::string path_b = "beams[" + std::to_string(i) + "]";
+    if (!b.IsMap()) rd.fail(b, path_b, "expected a map with name, group, section");
+    rd.keys(b, path_b, {"name", "group", "section"});
+    const std::string name = rd.text(rd.need(b, "name", path_b), path_b + ".name");
+    path_b = "beams[" + name + "]";
+    if (!beam_names.insert(name).second) rd.fail(b["name"], path_b + ".name", "a beam named '" + name + "' exists already");
+    const std::string group = rd.text(rd.need(b, "group", path_b), path_b + ".group");
+    const MeshLineBlock& block = find_group(rd, mesh, b, path_b, group);
+    if (!groups_used.insert(group).second)
+      rd.fail(b["group"], path_b + ".group", "group '" + group + "' is used by another beam already");
+    // Planar section: EA, GA (in-plane shear), EI (bending in the plane), rhoA, rhoI; or a material
+    // and a shape whose axis 3 is z (the section's in-plane properties GA2, EI3, rhoI3).
+    const YAML::Node sn = rd.need(b, "section", path_b);
+    double EA, GA, EI, rhoA, rhoI;
+    if (sn.IsMap() && (sn["E"] || sn["shape"])) {
+      const BeamSection sec = read_section(rd, sn, path_b + ".section");
+      EA = sec.EA(), GA = sec.GA2(), EI = sec.EI3(), rhoA = sec.rhoA(), rhoI = sec.rhoI3();
+    } else {
+      const std::string key = path_b + ".section";
+      if (!sn.IsMap()) rd.fail(sn, key, "expected a map of section properties");
+      rd.keys(sn, key, {"EA", "GA", "EI", "rhoA", "rhoI"});
+      EA = rd.positive(rd.need(sn, "EA", key), key + ".EA", "axial stiffness (N)");
+      GA = rd.positive(rd.need(sn, "GA", key), key + ".GA", "shear stiffness (N)");
+      EI = rd.positive(rd.need(sn, "EI", key), key + ".EI", "bending stiffness (N m^2)");
+      rhoA = rd.positive(rd.need(sn, "rhoA", key), key + ".rhoA", "mass per length (kg/m)");
+      rhoI = rd.positive(rd.need(sn, "rhoI", key), key + ".rhoI", "rotary inertia per length (kg m)");
+    }
+    for (size_t e = 0; e < block.elements.size(); ++e) {
+      const int ma = block.elements[e][0], mb = block.elements[e][1];
+      const Eigen::Vector3d d = mesh.points[static_cast<size_t>(mb)] - mesh.points[static_cast<size_t>(ma)];
+      const double angle = std::atan2(d.y(), d.x());  // section axis 1 along the element
+      for (int m : {ma, mb}) {
+        if (node_of[static_cast<size_t>(m)] >= 0) continue;
+        Node nd;
+        nd.kind = NodeKind::RigidBody2D;
+        const auto pn = point_name.find(m);
+        nd.name = pn != point_name.end() ? pn->second : name + ":" + std::to_string(mesh.node_tags[static_cast<size_t>(m)]);
+        if (model.find_node(nd.name) >= 0) rd.fail(b, path_b, "mesh point '" + nd.name + "' has the name of another node or body");
+        const Eigen::Vector3d x = mesh.points[static_cast<size_t>(m)];
+        nd.q0 = Eigen::Vector3d(x.x(), x.y(), angle);
+        nd.v0 = Eigen::Vector3d::Zero();
+        node_of[static_cast<size_t>(m)] = model.add_node(nd);
+      }
+      const int na = node_of[static_cast<size_t>(ma)], nb = node_of[static_cast<size_t>(mb)];
+      try {
+        model.add_element(std::make_unique<PlanarBeam>(name + "[" + std::to_string(e) + "]", na, nb, EA, GA, EI, rhoA,
+                                                       rhoI, model.node(na).q0, model.node(nb).q0, angle, angle, gravity));
+      } catch (const std::invalid_argument& ex) {
+        std::ostringstream os;
+        os << "element " << block.element_tags[e] << " of group '" << group << "': " << ex.what();
+        rd.fail(b["group"], path_b + ".group", os.str());
+      }
+    }
+  }
+  check_named_points(rd, mn, mesh, node_of);
 }
 
 }  // namespace alphaflex::scene_detail

@@ -264,6 +264,8 @@ namespace alphaflex::scene_detail {
 /// Spatial scenes (`dimension: 3`), scene_spatial.cpp.
 void read_spatial_bodies(Reader& rd, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity);
 void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity);
+/// Planar scenes: planar beams (x, y, θ nodes) from a mesh in the x-y plane.
+void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector2d& gravity);
 void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model);
 void read_spatial_forces(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model);
 void read_spatial_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model);

@@ -146,4 +146,40 @@ JointReaction PrismaticJoint2D::reaction(const Eigen::VectorXd& q, double t, con
   return r;
 }
 
+// ---------------------------------------------------------------- fixed (clamp)
+FixedJoint2D::FixedJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2,
+                           double relative_angle)
+    : Constraint(std::move(name), std::move(nodes)), p1_(p1), p2_(p2), theta0_(relative_angle) {}
+
+void FixedJoint2D::evaluate(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
+  phi.resize(3);
+  phi.head<2>() = p1_.position(q) - p2_.position(q);
+  phi[2] = p1_.angle(q) - p2_.angle(q) - theta0_;
+  phi_q = Eigen::MatrixXd::Zero(3, q.size());
+  phi_q.topRows<2>() = relative_jacobian(p1_, p2_, q);
+  if (p1_.has_angle()) phi_q(2, p1_.offset() + 2) += 1.0;
+  if (p2_.has_angle()) phi_q(2, p2_.offset() + 2) -= 1.0;
+}
+
+void FixedJoint2D::geometric_stiffness(const Eigen::VectorXd& q, double, const Eigen::VectorXd& lambda,
+                                       Eigen::MatrixXd& k) const {
+  k = Eigen::MatrixXd::Zero(local_size(p1_, p2_), local_size(p1_, p2_));
+  p1_.add_hessian(q, lambda.head<2>(), 1.0, k);  // the angle equation is linear in q
+  p2_.add_hessian(q, lambda.head<2>(), -1.0, k);
+}
+
+void FixedJoint2D::acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double,
+                                     Eigen::VectorXd& c) const {
+  c = Eigen::VectorXd::Zero(3);
+  c.head<2>() = p1_.convective_acceleration(q, v) - p2_.convective_acceleration(q, v);
+}
+
+JointReaction FixedJoint2D::reaction(const Eigen::VectorXd& q, double, const Eigen::VectorXd& lambda) const {
+  JointReaction r;
+  r.location = as3(p1_.position(q));
+  r.force = as3(-lambda.head<2>());
+  r.moment.z() = -lambda[2];  // the forces act at the joint point: only the angle row gives a moment
+  return r;
+}
+
 }  // namespace alphaflex

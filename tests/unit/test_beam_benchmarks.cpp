@@ -99,3 +99,24 @@ TEST(BeamInitialStatic, DynamicRunFromStaticEquilibriumStaysAtRest) {
 
 }  // namespace
 }  // namespace alphaflex
+
+namespace alphaflex {
+namespace {
+
+// The planar beam is the spatial beam restricted to the plane: the planar and spatial elastica
+// scenes give the same load path (Newton-converged states agree to the solver tolerance).
+TEST(BeamPlanarTwin, PlanarAndSpatialElasticaAgree) {
+  const RunSummary planar = run_scene("beam_elastica_2d", {"mesh.elements=8"});
+  const RunSummary spatial = run_scene("beam_elastica", {"mesh.elements=8"});
+  ASSERT_EQ(planar.sensor_history.size(), spatial.sensor_history.size());
+  double worst = 0.0;
+  for (size_t k = 0; k < planar.sensor_history.size(); ++k)
+    for (const char* s : {"tip_ux", "tip_uy", "tip_rotation", "root_force_y", "root_moment"})
+      worst = std::max(worst, std::fabs(planar.sensor_history[k][column(planar, s)] -
+                                        spatial.sensor_history[k][column(spatial, s)]));
+  std::printf("planar vs spatial elastica, 8 elements: largest difference %.2e\n", worst);
+  EXPECT_LT(worst, 1e-8);
+}
+
+}  // namespace
+}  // namespace alphaflex

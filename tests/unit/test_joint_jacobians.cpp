@@ -550,3 +550,48 @@ TEST(PrismaticJoint2D, PhiIsNormalDistanceAndRelativeAngleError) {
     expect_vector_near(phi_of(*c.joint, q_shift), vec({0.15, 0.0}));
   }
 }
+
+// =================================================================== FixedJoint2D
+// Φ = [r1 − r2; θ1 − θ2 − θ0] (clamp of a beam end, or a weld).
+namespace alphaflex {
+namespace {
+
+std::vector<JointCase> fixed_cases() {
+  const Node r = rigid_node();
+  std::vector<JointCase> cases;
+  cases.push_back({"rigid-rigid", std::make_shared<FixedJoint2D>("weld", std::vector<int>{0, 1},
+                                                                  PlanarMarker::on_node(r, kS1, 0),
+                                                                  PlanarMarker::on_node(r, kS2, 3), 0.4),
+                   6, {2, 5}, 0, kS1});
+  cases.push_back({"rigid-ground", std::make_shared<FixedJoint2D>("clamp", std::vector<int>{0},
+                                                                   PlanarMarker::on_node(r, kS1, 0),
+                                                                   PlanarMarker::ground(kGroundPoint), 0.4),
+                   3, {2}, 0, kS1});
+  return cases;
+}
+
+TEST(FixedJoint2D, ConstraintJacobianMatchesFiniteDifferences) {
+  unsigned seed = 4000;
+  for (const JointCase& c : fixed_cases()) check_constraint_jacobian(c, seed++);
+}
+
+TEST(FixedJoint2D, GeometricStiffnessMatchesFiniteDifferencesOfPhiQTransposeLambda) {
+  unsigned seed = 4100;
+  for (const JointCase& c : fixed_cases()) check_geometric_stiffness(c, seed++);
+}
+
+TEST(FixedJoint2D, AccelerationTermIsSecondDerivativeOfPhiAlongVelocity) {
+  unsigned seed = 4200;
+  for (const JointCase& c : fixed_cases()) check_acceleration_term(c, seed++);
+}
+
+TEST(FixedJoint2D, ReactionIsMinusLambdaAndSatisfiesVirtualWorkOnBody1) {
+  unsigned seed = 4300;
+  for (const JointCase& c : fixed_cases()) check_reaction_virtual_work(c, seed++);
+  const JointReaction r = fixed_cases()[1].joint->reaction(vec({0.3, 0.1, 0.2}), 0.0, vec({2.0, -1.0, 1.5}));
+  EXPECT_EQ(r.force, Eigen::Vector3d(-2.0, 1.0, 0.0));
+  EXPECT_EQ(r.moment, Eigen::Vector3d(0.0, 0.0, -1.5));
+}
+
+}  // namespace
+}  // namespace alphaflex

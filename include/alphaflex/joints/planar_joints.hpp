@@ -65,4 +65,23 @@ class PrismaticJoint2D final : public PointOnLineJoint2D {
   double theta0_;
 };
 
+/// Clamp: point 1 of body 1 and point 2 of body 2 coincide and their relative rotation keeps its
+/// initial value, Φ = [r1 − r2; θ1 − θ2 − θ0] (3 equations). Holds a beam end or welds two bodies.
+class FixedJoint2D final : public Constraint {
+ public:
+  FixedJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2, double relative_angle);
+  const char* type() const override { return "fixed"; }
+  int size() const override { return 3; }
+  void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
+  void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
+                           Eigen::MatrixXd& k) const override;
+  void acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t,
+                         Eigen::VectorXd& c) const override;
+  JointReaction reaction(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda) const override;
+
+ private:
+  PlanarMarker p1_, p2_;
+  double theta0_;
+};
+
 }  // namespace alphaflex
