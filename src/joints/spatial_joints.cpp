@@ -92,9 +92,9 @@ void SpatialJoint::operator()(const Pose<S>* frames, const S& t, KernelVector<S>
     using std::cos;
     using std::sin;
     const S phi = time_value<S>(*angle_, t);
-    put(b1.dot(cos(phi) * a2 - sin(phi) * a1));
+    put(a1.dot(cos(phi) * b2 - sin(phi) * b1));  // sin(ϕ − φ(t)), ϕ: angle of A from B about b3
   }
-  if (displacement_) put(a3.dot(d) - time_value<S>(*displacement_, t));
+  if (displacement_) put(-b3.dot(d) - time_value<S>(*displacement_, t));  // (p_A − p_B)·b3 = u(t)
 }
 
 void SpatialJoint::evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {

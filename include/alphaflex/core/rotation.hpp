@@ -8,10 +8,12 @@
 //   T(w)   = I − (1 − cosθ)/θ² ŵ + (θ − sinθ)/θ³ ŵ²                      (eq. A.9)
 //   so that  d/dε exp(w + ε δ)|₀ = exp(w) · (T(w) δ)^   (right-trivialized tangent of exp),
 //   T⁻¹(w) = I + ½ ŵ + (1 − (θ/2) cot(θ/2))/θ² ŵ².
-// Each coefficient is evaluated from θ² by its Taylor series when θ² < 1e-4 (the first omitted
-// term is below 1e-16 there), so that values and derivatives stay exact at and near θ = 0, where
-// the closed forms are 0/0. The logarithm is exact up to θ = π, where the axis is taken from the
-// symmetric part of R.
+// The coefficients of exp, T and T⁻¹ are evaluated from θ² by their Taylor series when
+// θ² < 0.25 (eight terms; the first omitted term is below 1e-17 there), so that values and first
+// and second derivatives (AD) stay exact at and near θ = 0, where the closed forms are 0/0: the
+// closed forms lose ~ε/θ² in first and ~ε/θ⁴ in second derivatives to cancellation, which is
+// round-off only from θ ≈ 0.5 on. The logarithm is exact up to θ = π, where the axis is taken from
+// the symmetric part of R.
 #include <Eigen/Dense>
 #include <cmath>
 
@@ -35,8 +37,21 @@ Vec3<S> vee(const Mat3<S>& m) {
 }
 
 namespace rotation_detail {
-/// Below this θ² the coefficients use their series (|next term| < 1e-16 · leading term).
+/// log_so3 (in sin²θ) and quaternion_exp (in θ²) switch to their series below this value
+/// (|next term| < 1e-16 · leading term).
 constexpr double series_below = 1e-4;
+/// Below this θ² the coefficients of exp, T and T⁻¹ use their series (8 terms, |next term| < 1e-17
+/// · leading term). Above it the closed forms' cancellation (~ε/θ² in first derivatives, ~ε/θ⁴ in
+/// second) is at round-off; at θ² = 1e-4 it reached 1e-13 in ∂T/∂w and 3e-11 in ∂²T/∂w².
+constexpr double coefficient_series_below = 0.25;
+
+/// Σ_{k=0..7} lead · Π_{i<k} (−x / divisor_i), evaluated by Horner's rule.
+template <class S>
+S alternating_series(const S& x, double lead, const double (&divisor)[7]) {
+  S r = S(1);
+  for (int k = 6; k >= 0; --k) r = S(1) - x / S(divisor[k]) * r;
+  return S(lead) * r;
+}
 
 /// sinθ/θ, (1 − cosθ)/θ², (θ − sinθ)/θ³ as functions of θ².
 template <class S>
@@ -44,10 +59,14 @@ void coefficients(const S& th2, S& a, S& b, S& c) {
   using std::cos;
   using std::sin;
   using std::sqrt;
-  if (th2 < S(series_below)) {
-    a = S(1) - th2 / S(6) + th2 * th2 / S(120) - th2 * th2 * th2 / S(5040);
-    b = S(0.5) - th2 / S(24) + th2 * th2 / S(720) - th2 * th2 * th2 / S(40320);
-    c = S(1.0 / 6.0) - th2 / S(120) + th2 * th2 / S(5040) - th2 * th2 * th2 / S(362880);
+  if (th2 < S(coefficient_series_below)) {
+    // Σ (−θ²)^k / (2k + p)!, p = 1, 2, 3: term ratios −θ² / ((2k + p + 1)(2k + p + 2)).
+    static constexpr double da[7] = {6, 20, 42, 72, 110, 156, 210};
+    static constexpr double db[7] = {12, 30, 56, 90, 132, 182, 240};
+    static constexpr double dc[7] = {20, 42, 72, 110, 156, 210, 272};
+    a = alternating_series<S>(th2, 1.0, da);
+    b = alternating_series<S>(th2, 0.5, db);
+    c = alternating_series<S>(th2, 1.0 / 6.0, dc);
   } else {
     const S th = sqrt(th2);
     a = sin(th) / th;
@@ -83,8 +102,13 @@ Mat3<S> tangent_so3_inverse(const Vec3<S>& w) {
   using std::sqrt;
   const S th2 = w.squaredNorm();
   S d;  // (1 − (θ/2) cot(θ/2))/θ²
-  if (th2 < S(rotation_detail::series_below)) {
-    d = S(1.0 / 12.0) + th2 / S(720) + th2 * th2 / S(30240) + th2 * th2 * th2 / S(1209600);
+  if (th2 < S(rotation_detail::coefficient_series_below)) {
+    // Σ_{n≥1} |B_2n| / (2n)! θ^(2n−2) (Bernoulli numbers), n = 1..8, by Horner's rule.
+    static constexpr double coef[8] = {1.0 / 12.0,          1.0 / 720.0,         1.0 / 30240.0,
+                                       1.0 / 1209600.0,     1.0 / 47900160.0,    691.0 / 1307674368000.0,
+                                       1.0 / 74724249600.0, 3617.0 / 10670622842880000.0};
+    d = S(coef[7]);
+    for (int k = 6; k >= 0; --k) d = S(coef[k]) + th2 * d;
   } else {
     const S th = sqrt(th2);
     d = (S(1) - th / S(2) * cos(th / S(2)) / sin(th / S(2))) / th2;

@@ -12,9 +12,11 @@
 //   prismatic    cylindrical and a1·b2 = 0                                  5 (axis a3)
 //   planar       a3·d = 0,  a3·b1 = 0, a3·b2 = 0                            3 (plane ⊥ a3)
 //   fixed        p_B − p_A = 0,  a2·b3 = 0, a3·b1 = 0, a1·b2 = 0            6 (clamp, rigid link)
-// Drivers (prescribed motion as a time function) add to a revolute or cylindrical joint the
-// relative angle about a3,  b1·(cos φ(t) a2 − sin φ(t) a1) = sin(ϕ − φ(t)) = 0, and to a prismatic
-// or cylindrical joint the relative translation along a3,  a3·d − u(t) = 0.
+// Drivers (prescribed motion as a time function) add to a revolute or cylindrical joint the angle
+// ϕ of node 1's marker relative to node 2's about the axis, a1·(cos φ(t) b2 − sin φ(t) b1) =
+// sin(ϕ − φ(t)) = 0, and to a prismatic or cylindrical joint the translation of node 1's marker
+// relative to node 2's along the axis, (p_A − p_B)·b3 − u(t) = 0 — body1 moving relative to
+// body2 (usually the ground), as a user reads "crank driven at angle φ(t)".
 // Φ_q, the geometric stiffness ∂(Φ_qᵀλ)/∂q, Φ_t and the acceleration term are exact derivatives
 // of these equations (model/spatial_kernel.hpp); they are checked against finite differences.
 //
