@@ -156,7 +156,10 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
     const auto& idx = elem_dofs_[e];
     const auto& g = elem_rows_[e];
     const int n = static_cast<int>(idx.size());
-    if (elements_in) {
+    // Element tangents are also needed without the element residuals when the matrix weights the
+    // projection rows by the mass (mass-weighted velocity projection of the consistent start).
+    const bool tangents_only = !elements_in && matrix && c.mass != 0.0;
+    if (elements_in || tangents_only) {
       ls.q = gather(s.q, elem_confs_[e]);
       ls.v = gather(s.v, idx);
       ls.qdd = gather(s.qdd, idx);
@@ -165,13 +168,16 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
       lr.reset(n, matrix);
       model_.elements()[e]->evaluate(ls, lr, matrix);
       if (matrix && c.increment) apply_tangent_operator(model_, model_.elements()[e]->nodes(), *c.increment, lr.K);
-      const Eigen::VectorXd re = sc * lr.r;
-      PetscCall(VecSetValues(r_, n, g.data(), re.data(), ADD_VALUES));
+      if (elements_in) {
+        const Eigen::VectorXd re = sc * lr.r;
+        PetscCall(VecSetValues(r_, n, g.data(), re.data(), ADD_VALUES));
+      }
     }
     if (matrix) {
       // The pattern must hold every entry from the first assembly on, even with zero values.
-      const RowMajor block = elements_in ? RowMajor(sc * (c.mass * lr.M + c.damping * lr.C + c.stiffness * lr.K))
-                                         : RowMajor::Zero(n, n);
+      const RowMajor block = elements_in     ? RowMajor(sc * (c.mass * lr.M + c.damping * lr.C + c.stiffness * lr.K))
+                             : tangents_only ? RowMajor(sc * c.mass * lr.M)
+                                             : RowMajor::Zero(n, n);
       PetscCall(add_block(S_, g, g, block));
     }
   }

@@ -64,8 +64,14 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
          << ". Check the bodies' positions and the joints' points.";
       throw InputError(os.str());
     }
-    // Velocities: minimum-norm correction onto Φ_q q̇ + Φ_t = 0 (linear: one solve).
-    const ModelVector x = lin_.solve(s, proj, ConstraintRows::Velocity, nullptr);
+    // Velocities: the correction onto Φ_q q̇ + Φ_t = 0 of least kinetic energy, ½ΔvᵀMΔv
+    // (linear: one solve of [[M, Φ_qᵀ],[Φ_q, 0]], the matrix of the acceleration solve below). It is
+    // the velocity an impulsive start produces (Kelvin's minimum-energy theorem), so a driver that
+    // starts at speed moves the whole mechanism as it would be jerked into motion, rather than only
+    // the coordinates next to the driver (which the unweighted minimum norm would change).
+    AssemblyCoefficients vel;
+    vel.mass = 1.0;
+    const ModelVector x = lin_.solve(s, vel, ConstraintRows::Velocity, nullptr);
     s.v -= x.dofs;
   }
   // Accelerations and multipliers from the index-1 system at t0 (linear in q̈, λ: one solve).
