@@ -22,7 +22,7 @@ void require_rotation(const Eigen::Matrix3d& R, const std::string& what) {
 }
 
 /// The elastic energy W(q) = (L0/2) εᵀ C ε as a spatial kernel (spatial_kernel.hpp): its
-/// kernel_jacobian is r = ∂W/∂δ, its kernel_second with weight 1 is K = ∂r/∂δ'.
+/// kernel_jacobian is r = ∂W/∂δ, its kernel_second with weight 1 is K = ∂r/∂δ' (the reference).
 struct ElasticEnergy {
   const GeometricallyExactBeam& beam;
 
@@ -34,6 +34,16 @@ struct ElasticEnergy {
     for (int k = 0; k < 6; ++k) w += S(c[k]) * e[k] * e[k];
     out.resize(1);
     out[0] = S(0.5 * beam.reference_length()) * w;
+  }
+};
+
+/// The closed-form elastic residual as a spatial kernel: its kernel_jacobian is (r, K).
+struct ElasticResidual {
+  const GeometricallyExactBeam& beam;
+
+  template <class S>
+  void operator()(const Pose<S>* frames, const S& /*t*/, KernelVector<S>& out) const {
+    out = beam.elastic_residual_of<S>(frames[0], frames[1]);
   }
 };
 
@@ -80,9 +90,39 @@ Vec6<S> GeometricallyExactBeam::strain_of(const Pose<S>& a, const Pose<S>& b) co
   return d / S(L0_) - eps0_.cast<S>();
 }
 
+template <class S>
+Eigen::Matrix<S, 12, 1> GeometricallyExactBeam::elastic_residual_of(const Pose<S>& a, const Pose<S>& b) const {
+  // Section frames, relative motion H_AB = H_A⁻¹ H_B = (R_rel, p) and d = log H_AB (as strain_of).
+  const Mat3<S> RsA = a.R * offset_[0];
+  const Mat3<S> RsB = b.R * offset_[1];
+  const Mat3<S> Rrel = RsA.transpose() * RsB;
+  const Vec3<S> p = RsA.transpose() * (b.x - a.x);
+  const Vec6<S> d = se3_log<S>(Rrel, p);
+  // Section forces f = C ε, then g = T_SE(3)(d)⁻ᵀ f, so that r = Bᵀ f (header comment).
+  const Vector6d& c = section_.stiffness();
+  Vec6<S> f;
+  for (int k = 0; k < 6; ++k) f[k] = c[k] * (d[k] / L0_ - eps0_[k]);
+  const Vec6<S> g = tangent_se3_inverse_transpose_times<S>(d, f);
+  const Vec3<S> gU = g.template head<3>(), gth = g.template tail<3>();
+  const Vec3<S> RgU = Rrel * gU;
+  const Vec3<S> FB = RsB * gU;  // = R_sA R_rel g_U, the force on B (world components)
+  Eigen::Matrix<S, 12, 1> r;
+  r.template segment<3>(0) = -FB;
+  r.template segment<3>(3) = -(offset_[0] * Vec3<S>(p.cross(RgU) + Rrel * gth));
+  r.template segment<3>(6) = FB;
+  r.template segment<3>(9) = offset_[1] * gth;
+  return r;
+}
+
 template Vec6<double> GeometricallyExactBeam::strain_of<double>(const Pose<double>&, const Pose<double>&) const;
-template Vec6<ad::AD1> GeometricallyExactBeam::strain_of<ad::AD1>(const Pose<ad::AD1>&, const Pose<ad::AD1>&) const;
-template Vec6<ad::AD2> GeometricallyExactBeam::strain_of<ad::AD2>(const Pose<ad::AD2>&, const Pose<ad::AD2>&) const;
+template Vec6<ad::FixedAD1<12>> GeometricallyExactBeam::strain_of<ad::FixedAD1<12>>(const Pose<ad::FixedAD1<12>>&,
+                                                                                    const Pose<ad::FixedAD1<12>>&) const;
+template Vec6<ad::FixedAD2<12>> GeometricallyExactBeam::strain_of<ad::FixedAD2<12>>(const Pose<ad::FixedAD2<12>>&,
+                                                                                    const Pose<ad::FixedAD2<12>>&) const;
+template Eigen::Matrix<double, 12, 1> GeometricallyExactBeam::elastic_residual_of<double>(const Pose<double>&,
+                                                                                        const Pose<double>&) const;
+template Eigen::Matrix<ad::FixedAD1<12>, 12, 1> GeometricallyExactBeam::elastic_residual_of<ad::FixedAD1<12>>(
+    const Pose<ad::FixedAD1<12>>&, const Pose<ad::FixedAD1<12>>&) const;
 
 GeometricallyExactBeam::Vector6d GeometricallyExactBeam::strain(const Eigen::VectorXd& q) const {
   return strain_of<double>(pose_of(q.data()), pose_of(q.data() + 7));
@@ -93,16 +133,33 @@ double GeometricallyExactBeam::elastic_energy(const Eigen::VectorXd& q) const {
   return 0.5 * L0_ * e.dot(section_.stiffness().cwiseProduct(e));
 }
 
-void GeometricallyExactBeam::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+void GeometricallyExactBeam::elastic_forces(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* K) const {
+  if (K) {
+    kernel_jacobian(ElasticResidual{*this}, q, 0.0, r, *K);
+    return;
+  }
+  r = elastic_residual_of<double>(pose_of(q.data()), pose_of(q.data() + 7));
+}
+
+void GeometricallyExactBeam::elastic_forces_from_energy(const Eigen::VectorXd& q, Eigen::VectorXd& r,
+                                                        Eigen::MatrixXd* K) const {
   const ElasticEnergy energy{*this};
   Eigen::VectorXd w;
   Eigen::MatrixXd dW;
-  kernel_jacobian(energy, s.q, s.t, w, dW);
-  out.r += dW.row(0).transpose();
+  kernel_jacobian(energy, q, 0.0, w, dW);
+  r = dW.row(0).transpose();
+  if (K) kernel_second(energy, q, 0.0, Eigen::VectorXd::Ones(1), *K);
+}
+
+void GeometricallyExactBeam::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
   if (tangent) {
+    Eigen::VectorXd r;
     Eigen::MatrixXd K;
-    kernel_second(energy, s.q, s.t, Eigen::VectorXd::Ones(1), K);
+    kernel_jacobian(ElasticResidual{*this}, s.q, s.t, r, K);
+    out.r += r;
     out.K += K;
+  } else {
+    out.r += elastic_residual_of<double>(pose_of(s.q.data()), pose_of(s.q.data() + 7));
   }
   add_inertia(s, out, tangent);
   // Gravity, consistent for linear interpolation: ∫ N_i ρA g ds = ρA L0/2 g.

@@ -1,24 +1,29 @@
 // The geometrically exact beam on SE(3) (elements/geometrically_exact_beam.hpp) and its sections:
 //  - K, C, M are the derivatives of r on the group (central differences of r(q ∘ exp(±h e_j)));
+//  - the closed-form elastic r and its AD1 tangent equal the nested-AD derivatives of the energy;
 //  - the strain is objective and exact for every constant-strain state (pure bending on a circle);
 //  - no shear locking: a slender cantilever's tip deflection is Timoshenko's up to the element's
 //    known O(n⁻²) error (one-point-quadrature equivalent), already accurate for a few elements;
 //  - the cantilever's first two bending frequencies converge to Euler–Bernoulli's;
 //  - Newton with K rolls a cantilever into the exact circle under an end moment;
-//  - the section factories give the tabulated section properties.
+//  - the section factories give the tabulated section properties;
+//  (cost per evaluation: docs/theory/beam.md, measured outside the tests)
 // Numbers measured here are quoted in docs/theory/beam.md.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/elements/beam_section.hpp"
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
+#include "alphaflex/joints/spatial_joints.hpp"
 #include "alphaflex/model/node.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
 #include "test_support.hpp"
@@ -305,11 +310,106 @@ TEST(BeamGravity, HalfTheWeightOnEachNodeTimesTheLoadFactor) {
   }
 }
 
-// ------------------------------------------------------------------ strain measure
+// ------------------------------------------------------------------ closed-form elastic forces
 
-// Objectivity: a rigid motion (c, Q) of both nodes, x → c + Q x, R → Q R, leaves ε, W and the
-// section forces unchanged; the elastic residual is its image, r_x → Q r_x (world components) and
-// r_θ → r_θ (body components), and K → P K Pᵀ with P = diag(Q, I, Q, I).
+/// Relative Frobenius difference, or the absolute one where the reference vanishes.
+double difference(const MatrixXd& fast, const MatrixXd& reference) {
+  const double n = reference.norm();
+  return n > 0.0 ? (fast - reference).norm() / n : (fast - reference).norm();
+}
+
+// The closed-form residual r = Bᵀ C ε (T_SE(3)⁻ᵀ of core/se3.hpp) and its AD1 Jacobian K, which
+// evaluate() uses, equal the nested-AD derivatives of W (kernel_jacobian and kernel_second of the
+// energy, the former implementation) to round-off: at relative rotations between the end sections
+// of exactly 0 (undeformed, and stretched and sheared without rotation), 1e-8, small, around the
+// series switches (θ² = 0.25, 1), around the switch of log SO(3) at π/2 and up to 3 rad, and at
+// random deformed, rigidly moved states of straight and curved, twisted references whose node
+// frames differ from the section frames.
+TEST(BeamElasticForces, ClosedFormEqualsNestedADOfTheEnergy) {
+  double worst_r = 0.0, worst_K = 0.0, worst_r_zero = 0.0;
+  int checked = 0;
+  auto compare = [&](const GeometricallyExactBeam& beam, const VectorXd& q, const std::string& what) {
+    VectorXd r, r_ref;
+    MatrixXd K, K_ref;
+    beam.elastic_forces(q, r, &K);
+    beam.elastic_forces_from_energy(q, r_ref, &K_ref);
+    VectorXd r_only;
+    beam.elastic_forces(q, r_only);
+    EXPECT_LT((r_only - r).norm(), 1e-14 * (r.norm() + K.norm())) << what;  // double and AD1 paths
+    // evaluate() adds exactly these (no inertia or gravity here, at rest).
+    const LocalResidual t = tangents(beam, state(q));
+    EXPECT_EQ((t.K - K).norm(), 0.0) << what;
+    const double eK = difference(K, K_ref);
+    EXPECT_LT(eK, 1e-10) << what;
+    worst_K = std::max(worst_K, eK);
+    if (r_ref.norm() > 0.0) {
+      const double er = difference(r, r_ref);
+      EXPECT_LT(er, 1e-10) << what;
+      worst_r = std::max(worst_r, er);
+    } else {  // undeformed: both vanish
+      EXPECT_LT(r.norm(), 1e-14 * K.norm()) << what;
+      worst_r_zero = std::max(worst_r_zero, r.norm() / K.norm());
+    }
+    ++checked;
+  };
+  // Identity node and section frames: the relative rotation is exactly the turn given to node B.
+  const Pose<double> a{Vector3d::Zero(), Matrix3d::Identity()}, b{Vector3d::UnitX(), Matrix3d::Identity()};
+  const Matrix3d I = Matrix3d::Identity();
+  const GeometricallyExactBeam straight("b", 0, 1, unit_section(), a, b, I, I, Vector3d::Zero());
+  compare(straight, configuration(a, b), "undeformed, turn 0");
+  compare(straight, configuration(a, Pose<double>{Vector3d(1.02, 0.05, -0.03), I}), "stretched and sheared, turn 0");
+  const Vector3d axis = Vector3d(0.3, -0.5, 0.8).normalized();
+  for (double turn : {1e-8, 1e-4, 0.1, 0.4999, 0.5001, 0.9999, 1.0001, 1.5707, 1.5708, 1.5709, 2.0, 3.0}) {
+    const Pose<double> bt{Vector3d(1.02, 0.05, -0.03), exp_so3<double>(Vector3d(turn * axis))};
+    compare(straight, configuration(a, bt), "turn " + std::to_string(turn));
+  }
+  // Random specimens and states (as BeamTangents.MatchCentralDifferencesOnTheGroup).
+  std::mt19937 rng(23);
+  for (int kind = 0; kind < 4; ++kind) {
+    const Vector3d turn_b = kind == 0 ? Vector3d::Zero() : random_vector(rng, 0.4);
+    const Specimen sp = specimen(rng, unit_section(), 0.5 + 0.4 * kind, turn_b);
+    const VectorXd q_ref = configuration(sp.a, sp.b);
+    compare(sp.beam, q_ref, "reference of specimen " + std::to_string(kind));
+    for (int sample = 0; sample < 10; ++sample) {
+      VectorXd dx(12);
+      for (int k = 0; k < 2; ++k) {
+        dx.segment<3>(6 * k) = random_vector(rng, 0.2 * sp.beam.reference_length());
+        dx.segment<3>(6 * k + 3) = random_vector(rng, 0.3 * (1 + sample % 3));
+      }
+      VectorXd q = retracted(q_ref, dx);
+      const Matrix3d Q = random_rotation(rng);
+      const Vector3d c = random_vector(rng, 2.0);
+      for (int k = 0; k < 2; ++k) {
+        const Pose<double> p = pose_of(q.data() + 7 * k);
+        store_pose(c + Q * p.x, Q * p.R, q.data() + 7 * k);
+      }
+      compare(sp.beam, q, "specimen " + std::to_string(kind) + ", sample " + std::to_string(sample));
+    }
+  }
+  std::printf("beam closed-form r, K vs nested AD of W (%d states, turns 0 ... 3 rad): max relative difference "
+              "r %.1e, K %.1e; undeformed |r|/|K| %.1e\n",
+              checked, worst_r, worst_K, worst_r_zero);
+}
+
+/// Thread CPU time per call of f in µs (best of 5 rounds of n calls); a measurement, not a test.
+template <class F>
+double microseconds_per_call(F f, int n) {
+  auto now = [] {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  };
+  double best = 1e300;
+  for (int round = 0; round < 5; ++round) {
+    const double t0 = now();
+    for (int i = 0; i < n; ++i) f();
+    best = std::min(best, (now() - t0) / n * 1e6);
+  }
+  return best;
+}
+
+// Cost per evaluation is measured in docs/theory/beam.md (a benchmark, not a timed test).
+
 TEST(BeamStrain, IsObjective) {
   std::mt19937 rng(11);
   const Specimen sp = specimen(rng, unit_section(), 1.1, Vector3d(0.3, 0.1, -0.2));

@@ -19,8 +19,18 @@
 //
 // Residual (convention of element.hpp, r = M q̈ − g with internal forces positive):
 //   r = ∂W/∂δ + r_inertia − r_gravity,   W = (L0/2) εᵀ C ε,  C = diag(EA, GA2, GA3, GJ, EI2, EI3).
-// The elastic part and its tangent K are exact derivatives of W by automatic differentiation
-// (spatial_kernel.hpp: kernel_jacobian for r, kernel_second for K).
+// The elastic part is computed in closed form, r_el = Bᵀ f with f = C ε (section forces) and
+// B = ∂d/∂δ: a perturbation δ_i of node i moves its section frame by the SE(3) twist
+// ξ_i = P_i δ_i, P_i = diag((R_i O_i)ᵀ, O_iᵀ), and log(exp(−ξ_A) exp(d) exp(ξ_B)) =
+// d + T_SE(3)(d)⁻¹ (ξ_B − Ad(H_AB⁻¹) ξ_A) + O(ξ²) (core/se3.hpp), so that with
+// g = T_SE(3)(d)⁻ᵀ f = (g_U, g_θ) (the section forces carried to the twist of the relative motion):
+//   r_el,B = (R_B O_B g_U,  O_B g_θ),
+//   r_el,A = −P_Aᵀ Ad(H_AB⁻¹)ᵀ g = (−R_B O_B g_U,  −O_A (p × R_rel g_U + R_rel g_θ)).
+// The tangent K = ∂r_el/∂δ' is the exact first derivative of that residual on the group by
+// forward AD (kernel_jacobian of a 12-output kernel, spatial_kernel.hpp). The same r and K are
+// also available as nested-AD derivatives of W (elastic_forces_from_energy, the reference the
+// tests compare with: equal to round-off); the closed form costs ~1/25 of it (docs/theory/beam.md,
+// Cost).
 //
 // Inertia (consistent, with rotary inertia; velocities interpolated linearly, N_A = 1 − s/L0,
 // N_B = s/L0):
@@ -45,25 +55,12 @@
 #include <vector>
 
 #include "alphaflex/core/rotation.hpp"
+#include "alphaflex/core/se3.hpp"
 #include "alphaflex/elements/beam_section.hpp"
 #include "alphaflex/model/element.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
 
 namespace alphaflex {
-
-template <class S> using Vec6 = Eigen::Matrix<S, 6, 1>;
-
-/// log_SE(3) of (R, p) in the (translation, rotation) order: θ = log(R), U = J_l(θ)⁻¹ p with
-/// J_l(θ)⁻¹ = T⁻¹(θ)ᵀ = I − ½θ̂ + (1 − (θ/2)cot(θ/2))/θ² θ̂² (series near θ = 0 in rotation.hpp,
-/// so values and first and second AD derivatives are exact at θ = 0). Defined for |θ| < π.
-template <class S>
-Vec6<S> se3_log(const Mat3<S>& R, const Vec3<S>& p) {
-  const Vec3<S> th = log_so3<S>(R);
-  Vec6<S> d;
-  d.template head<3>() = tangent_so3_inverse<S>(th).transpose() * p;
-  d.template tail<3>() = th;
-  return d;
-}
 
 class GeometricallyExactBeam final : public Element {
  public:
@@ -91,10 +88,22 @@ class GeometricallyExactBeam final : public Element {
   /// W = (L0/2) εᵀ C ε (J).
   double elastic_energy(const Eigen::VectorXd& q) const;
 
-  /// ε at the given poses of nodes A and B (what the AD kernels differentiate); instantiated for
-  /// double, ad::AD1 and ad::AD2.
+  /// ε at the given poses of nodes A and B; instantiated for double, ad::FixedAD1<12> and
+  /// ad::FixedAD2<12> (spatial_kernel.hpp).
   template <class S>
   Vec6<S> strain_of(const Pose<S>& a, const Pose<S>& b) const;
+
+  /// r_el = ∂W/∂δ = Bᵀ C ε at the given poses, in closed form (header comment); instantiated for
+  /// double and ad::FixedAD1<12>.
+  template <class S>
+  Eigen::Matrix<S, 12, 1> elastic_residual_of(const Pose<S>& a, const Pose<S>& b) const;
+
+  /// r_el and, if K is given, K_el = ∂r_el/∂δ' at q (14 numbers): the closed-form residual and its
+  /// AD1 Jacobian (what evaluate() uses).
+  void elastic_forces(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* K = nullptr) const;
+  /// The same as exact derivatives of W by nested AD (kernel_jacobian and kernel_second of W):
+  /// the independent reference for the tests, about ten times slower.
+  void elastic_forces_from_energy(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* K = nullptr) const;
 
   const BeamSection& section() const { return section_; }
   double reference_length() const { return L0_; }

@@ -14,13 +14,49 @@
 // The order in `second` matters on a group: the outer perturbation is applied first, so H is the
 // derivative of the residual at a perturbed configuration, which is what S_t needs; it is not
 // symmetric in general.
+//
+// How the perturbations are applied (exact, and cheap):
+//  - jacobian and second take only first derivatives with respect to each perturbation: d/dδ_i,
+//    and in second the mixed ∂²/∂δ'_j∂δ_i (never ∂²/∂δ_i∂δ_k). exp(δθ^) = I + δθ^ + O(|δθ|²), and
+//    the O(|δθ|²) terms enter neither: with M(δ', δ) = R exp(δθ'^) exp(δθ^) or R(I + δθ'^)(I + δθ^)
+//    alike, ∂M/∂δθ_k = R ê_k and ∂²M/∂δθ'_j∂δθ_k = R ê_j ê_k at 0, so f(M) has the same first and
+//    mixed derivatives (chain rule on f as a function of the matrix entries; f(M) is only ever
+//    differentiated at δ = 0, where M = R is a rotation). So the frames are R(I + δθ^), seeded
+//    directly as AD numbers (value R, first derivatives R ê_k, mixed R ê_j ê_k: seeded_pose1/2) —
+//    no AD through exp and its series.
+//  - along_motion needs d²/dτ² along one direction, where exp's second-order term counts: there
+//    the frames are R(I + τv̂ + τ²v̂²/2) = R exp(τv̂) + O(τ³), exact for d/dτ and d²/dτ² at 0.
+//  - The derivative vectors have a fixed size, 6 per frame (ad::FixedAD1<6>, <12> and the nested
+//    ad::FixedAD2<6>, <12>; FixedAD2<1> for along_motion): no run-time sizes, no resizing of the
+//    zero derivative vectors of constants, loops unrolled. Kernels have one or two frames (the
+//    capacity of core/autodiff.hpp's types as well).
+// Measured (thread CPU time, revolute joint between two nodes with an angle driver): geometric
+// stiffness 425 µs with AD2 through exp and dynamic-size derivatives → 145 µs with R(I + δθ^)
+// (same bits of H) → 47–84 µs with fixed sizes and direct seeding (the range is from the kernel
+// compiled in a scratch program and in the library); Φ_q 7.3 → 2.3 µs; acceleration term
+// 42 → 0.5 µs. docs/theory/beam.md, Cost.
 #include <Eigen/Dense>
+#include <array>
+#include <stdexcept>
 
 #include "alphaflex/core/autodiff.hpp"
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/core/time_function.hpp"
 
 namespace alphaflex {
+
+namespace ad {
+/// Fixed-size first derivatives with respect to N variables (the kernels' scalars, see the header).
+template <int N> using FixedAD1 = Eigen::AutoDiffScalar<Eigen::Matrix<double, N, 1>>;
+/// Nested: second (mixed) derivatives with respect to N outer and N inner variables.
+template <int N> using FixedAD2 = Eigen::AutoDiffScalar<Eigen::Matrix<FixedAD1<N>, N, 1>>;
+
+/// Plain value of any (nested) Eigen::AutoDiffScalar (core/autodiff.hpp has AD1 and AD2).
+template <class D>
+double value(const Eigen::AutoDiffScalar<D>& x) {
+  return value(x.value());
+}
+}  // namespace ad
 
 /// Largest number of outputs of one kernel (a two-node beam's residual: 12).
 constexpr int kMaxKernelOutputs = 16;
@@ -75,12 +111,114 @@ S time_value(const TimeFunction& f, const S& t) {
 
 namespace kernel_detail {
 
-inline int frames_in(const Eigen::VectorXd& q) { return static_cast<int>(q.size() / 7); }
+/// At most two frames (12 variables), as core/autodiff.hpp's kMaxVariables.
+constexpr int kMaxFrames = 2;
+using Poses = std::array<Pose<double>, kMaxFrames>;
 
-inline std::vector<Pose<double>> poses(const Eigen::VectorXd& q) {
-  std::vector<Pose<double>> p;
-  for (int k = 0; k < frames_in(q); ++k) p.push_back(pose_of(q.data() + 7 * k));
+inline int frames_in(const Eigen::VectorXd& q) {
+  const int nf = static_cast<int>(q.size() / 7);
+  if (nf < 1 || nf > kMaxFrames || q.size() != 7 * nf)
+    throw std::invalid_argument("a spatial kernel takes one or two frames (7 or 14 configuration numbers)");
+  return nf;
+}
+
+inline Poses poses(const Eigen::VectorXd& q, int nf) {
+  Poses p;
+  for (int k = 0; k < nf; ++k) p[static_cast<size_t>(k)] = pose_of(q.data() + 7 * k);
   return p;
+}
+
+/// R êₘ, m = 0, 1, 2: ∂/∂δθₘ of R(I + δθ^).
+inline std::array<Eigen::Matrix3d, 3> rotation_directions(const Eigen::Matrix3d& R) {
+  std::array<Eigen::Matrix3d, 3> E;
+  for (int m = 0; m < 3; ++m) E[static_cast<size_t>(m)] = R * hat<double>(Eigen::Vector3d::Unit(m));
+  return E;
+}
+
+/// (x + δx, R(I + δθ^)) as AD1<N>, δ = variables `first` … `first` + 5.
+template <int N>
+Pose<ad::FixedAD1<N>> seeded_pose1(const Pose<double>& p, int first) {
+  using A = ad::FixedAD1<N>;
+  using D = typename A::DerType;
+  const auto E = rotation_directions(p.R);
+  Pose<A> s;
+  for (int i = 0; i < 3; ++i) s.x[i] = A(p.x[i], D::Unit(first + i));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      D d = D::Zero();
+      for (int m = 0; m < 3; ++m) d[first + 3 + m] = E[static_cast<size_t>(m)](i, j);
+      s.R(i, j) = A(p.R(i, j), d);
+    }
+  return s;
+}
+
+/// (x + δx' + δx, R(I + δθ'^)(I + δθ^)) as AD2<N>: outer δ', inner δ, both variables `first` … +5.
+/// Value R, inner and outer derivatives R êₘ, mixed ∂²/∂δθ'ₐ∂δθ_b = R êₐ ê_b.
+template <int N>
+Pose<ad::FixedAD2<N>> seeded_pose2(const Pose<double>& p, int first) {
+  using A1 = ad::FixedAD1<N>;
+  using A2 = ad::FixedAD2<N>;
+  using D1 = typename A1::DerType;
+  using D2 = typename A2::DerType;
+  const auto E = rotation_directions(p.R);
+  std::array<std::array<Eigen::Matrix3d, 3>, 3> EE;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      EE[static_cast<size_t>(a)][static_cast<size_t>(b)] =
+          E[static_cast<size_t>(a)] * hat<double>(Eigen::Vector3d::Unit(b));
+  Pose<A2> s;
+  for (int i = 0; i < 3; ++i) {
+    D2 outer;
+    for (int o = 0; o < N; ++o) outer[o] = A1(o == first + i ? 1.0 : 0.0, D1::Zero());
+    s.x[i] = A2(A1(p.x[i], D1::Unit(first + i)), outer);
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      D1 d = D1::Zero();
+      for (int m = 0; m < 3; ++m) d[first + 3 + m] = E[static_cast<size_t>(m)](i, j);
+      D2 outer;
+      for (int o = 0; o < N; ++o) {
+        const int a = o - first - 3;
+        if (a < 0 || a > 2) {
+          outer[o] = A1(0.0, D1::Zero());
+          continue;
+        }
+        D1 mixed = D1::Zero();
+        for (int b = 0; b < 3; ++b) mixed[first + 3 + b] = EE[static_cast<size_t>(a)][static_cast<size_t>(b)](i, j);
+        outer[o] = A1(d[o], mixed);
+      }
+      s.R(i, j) = A2(A1(p.R(i, j), d), outer);
+    }
+  return s;
+}
+
+template <int N, class Fn>
+void jacobian_fixed(const Fn& f, const Poses& p, double t, Eigen::VectorXd& value, Eigen::MatrixXd& J) {
+  using A = ad::FixedAD1<N>;
+  std::array<Pose<A>, N / 6> ps;
+  for (int k = 0; k < N / 6; ++k) ps[static_cast<size_t>(k)] = seeded_pose1<N>(p[static_cast<size_t>(k)], 6 * k);
+  KernelVector<A> r;
+  f(ps.data(), A(t), r);
+  value.resize(r.size());
+  J.resize(r.size(), N);
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    value[i] = r[i].value();
+    J.row(i) = r[i].derivatives().transpose();
+  }
+}
+
+template <int N, class Fn>
+void second_fixed(const Fn& f, const Poses& p, double t, const Eigen::VectorXd& w, Eigen::MatrixXd& H) {
+  using A = ad::FixedAD2<N>;
+  std::array<Pose<A>, N / 6> ps;
+  for (int k = 0; k < N / 6; ++k) ps[static_cast<size_t>(k)] = seeded_pose2<N>(p[static_cast<size_t>(k)], 6 * k);
+  KernelVector<A> r;
+  f(ps.data(), A(t), r);
+  H = Eigen::MatrixXd::Zero(N, N);
+  for (Eigen::Index m = 0; m < r.size(); ++m) {
+    if (w[m] == 0.0) continue;
+    for (int j = 0; j < N; ++j) H.col(j) += w[m] * r[m].derivatives()[j].derivatives();
+  }
 }
 
 }  // namespace kernel_detail
@@ -88,7 +226,7 @@ inline std::vector<Pose<double>> poses(const Eigen::VectorXd& q) {
 /// f(q, t) in doubles.
 template <class Fn>
 void kernel_value(const Fn& f, const Eigen::VectorXd& q, double t, Eigen::VectorXd& out) {
-  const auto p = kernel_detail::poses(q);
+  const auto p = kernel_detail::poses(q, kernel_detail::frames_in(q));
   KernelVector<double> r;
   f(p.data(), t, r);
   out = r;
@@ -97,56 +235,19 @@ void kernel_value(const Fn& f, const Eigen::VectorXd& q, double t, Eigen::Vector
 /// f and J = ∂f(q ∘ exp(δ))/∂δ (rows: outputs, columns: 6 per frame).
 template <class Fn>
 void kernel_jacobian(const Fn& f, const Eigen::VectorXd& q, double t, Eigen::VectorXd& value, Eigen::MatrixXd& J) {
-  using ad::AD1;
-  const auto p = kernel_detail::poses(q);
-  const int nf = static_cast<int>(p.size()), n = 6 * nf;
-  std::vector<Pose<AD1>> ps;
-  for (int k = 0; k < nf; ++k) {
-    Vec3<AD1> dx, dth;
-    for (int i = 0; i < 3; ++i) {
-      dx[i] = ad::variable1(0.0, n, 6 * k + i);
-      dth[i] = ad::variable1(0.0, n, 6 * k + 3 + i);
-    }
-    ps.push_back(perturbed<AD1>(cast_pose<AD1>(p[k]), dx, dth));
-  }
-  KernelVector<AD1> r;
-  f(ps.data(), ad::constant1(t, n), r);
-  value.resize(r.size());
-  J.resize(r.size(), n);
-  for (Eigen::Index i = 0; i < r.size(); ++i) {
-    value[i] = r[i].value();
-    if (r[i].derivatives().size() == n) J.row(i) = r[i].derivatives().transpose();
-    else J.row(i).setZero();  // an output that does not depend on the frames
-  }
+  const int nf = kernel_detail::frames_in(q);
+  const auto p = kernel_detail::poses(q, nf);
+  if (nf == 1) kernel_detail::jacobian_fixed<6>(f, p, t, value, J);
+  else kernel_detail::jacobian_fixed<12>(f, p, t, value, J);
 }
 
 /// H_ij = ∂/∂δ'_j ∂(wᵀf)/∂δ_i at q ∘ exp(δ') ∘ exp(δ) (see the header comment).
 template <class Fn>
 void kernel_second(const Fn& f, const Eigen::VectorXd& q, double t, const Eigen::VectorXd& w, Eigen::MatrixXd& H) {
-  using ad::AD2;
-  const auto p = kernel_detail::poses(q);
-  const int nf = static_cast<int>(p.size()), n = 6 * nf;
-  std::vector<Pose<AD2>> ps;
-  for (int k = 0; k < nf; ++k) {
-    Vec3<AD2> ox, oth, ix, ith;
-    for (int i = 0; i < 3; ++i) {
-      ox[i] = ad::outer_variable(0.0, n, 6 * k + i, n);
-      oth[i] = ad::outer_variable(0.0, n, 6 * k + 3 + i, n);
-      ix[i] = ad::inner_variable(0.0, n, 6 * k + i, n);
-      ith[i] = ad::inner_variable(0.0, n, 6 * k + 3 + i, n);
-    }
-    ps.push_back(perturbed<AD2>(perturbed<AD2>(cast_pose<AD2>(p[k]), ox, oth), ix, ith));
-  }
-  KernelVector<AD2> r;
-  f(ps.data(), ad::constant2(t, n, n), r);
-  H = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index m = 0; m < r.size(); ++m) {
-    if (w[m] == 0.0 || r[m].derivatives().size() != n) continue;
-    for (int j = 0; j < n; ++j) {
-      const auto& d = r[m].derivatives()[j].derivatives();
-      if (d.size() == n) H.col(j) += w[m] * d;
-    }
-  }
+  const int nf = kernel_detail::frames_in(q);
+  const auto p = kernel_detail::poses(q, nf);
+  if (nf == 1) kernel_detail::second_fixed<6>(f, p, t, w, H);
+  else kernel_detail::second_fixed<12>(f, p, t, w, H);
 }
 
 /// first = d/dτ f(q ∘ exp(τ v), t + τ s), second = d²/dτ² of the same, at τ = 0 (s = 1 moves
@@ -154,32 +255,33 @@ void kernel_second(const Fn& f, const Eigen::VectorXd& q, double t, const Eigen:
 template <class Fn>
 void kernel_along_motion(const Fn& f, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t, double s,
                          Eigen::VectorXd& first, Eigen::VectorXd& second) {
-  using ad::AD1;
-  using ad::AD2;
-  const auto p = kernel_detail::poses(q);
-  // τ as both the inner and the outer variable: the mixed derivative is d²/dτ².
-  ad::Derivatives2 d(1);
-  d[0] = ad::constant1(1.0, 1);
-  const AD2 tau(ad::variable1(0.0, 1, 0), d);
-  std::vector<Pose<AD2>> ps;
-  for (size_t k = 0; k < p.size(); ++k) {
-    Vec3<AD2> dx, dth;
-    for (int i = 0; i < 3; ++i) {
-      dx[i] = tau * AD2(v[6 * k + i]);
-      dth[i] = tau * AD2(v[6 * k + 3 + i]);
-    }
-    ps.push_back(perturbed<AD2>(cast_pose<AD2>(p[k]), dx, dth));
+  using A1 = ad::FixedAD1<1>;
+  using A2 = ad::FixedAD2<1>;
+  using D1 = A1::DerType;
+  using D2 = A2::DerType;
+  // τ as both the inner and the outer variable: the mixed derivative is d²/dτ². A number
+  // a + b τ + c τ²/2 is A2(A1(a, b), (A1(b, c))).
+  auto number = [](double a, double b, double c) { return A2(A1(a, D1(b)), D2(A1(b, D1(c)))); };
+  const int nf = kernel_detail::frames_in(q);
+  const auto p = kernel_detail::poses(q, nf);
+  std::array<Pose<A2>, kernel_detail::kMaxFrames> ps;
+  for (int k = 0; k < nf; ++k) {
+    const Pose<double>& pk = p[static_cast<size_t>(k)];
+    // x + τ v_x, R(I + τ v̂ + τ² v̂²/2): R exp(τ v̂) to second order.
+    const Eigen::Vector3d vx = v.segment<3>(6 * k), vth = v.segment<3>(6 * k + 3);
+    const Eigen::Matrix3d Rv = pk.R * hat<double>(vth), Rvv = Rv * hat<double>(vth);
+    Pose<A2>& out = ps[static_cast<size_t>(k)];
+    for (int i = 0; i < 3; ++i) out.x[i] = number(pk.x[i], vx[i], 0.0);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) out.R(i, j) = number(pk.R(i, j), Rv(i, j), Rvv(i, j));
   }
-  KernelVector<AD2> r;
-  const AD2 time = AD2(t) + AD2(s) * tau;
-  f(ps.data(), time, r);
+  KernelVector<A2> r;
+  f(ps.data(), number(t, s, 0.0), r);
   first.resize(r.size());
   second.resize(r.size());
   for (Eigen::Index i = 0; i < r.size(); ++i) {
-    first[i] = r[i].value().derivatives().size() ? r[i].value().derivatives()[0] : 0.0;
-    second[i] = (r[i].derivatives().size() && r[i].derivatives()[0].derivatives().size())
-                    ? r[i].derivatives()[0].derivatives()[0]
-                    : 0.0;
+    first[i] = r[i].value().derivatives()[0];
+    second[i] = r[i].derivatives()[0].derivatives()[0];
   }
 }
 
