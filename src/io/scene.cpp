@@ -472,7 +472,7 @@ Scene build(const YAML::Node& root, const std::string& label,
   } else {
     const Eigen::Vector3d gravity = rd.vec3(root, "gravity", "", Eigen::Vector3d::Zero());
     scene_detail::read_mesh_and_beams(rd, root, *scene.model, gravity);
-    scene_detail::read_spatial_bodies(rd, root["bodies"], *scene.model, gravity);
+    scene_detail::read_spatial_bodies(rd, sb, root["bodies"], *scene.model, gravity);
     if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies and no beams");
     scene_detail::read_spatial_joints(rd, sb, root["joints"], *scene.model);
     scene_detail::read_spatial_forces(rd, sb, root["forces"], *scene.model);

@@ -204,9 +204,17 @@ struct BodyRef {
   int node = -1;  // -1 = ground
 };
 
+/// A named frame fixed to a spatial body (3D `markers`): its node and its pose in the body frame.
+struct NamedMarker {
+  int node = -1;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+};
+
 class SceneBuilder {
  public:
   SceneBuilder(Reader& rd, Model& model) : rd_(rd), model_(model) {}
+  std::map<std::string, NamedMarker> markers;  ///< 3D body markers by name
 
   int body(const YAML::Node& map, const std::string& key, const std::string& path, bool ground_ok) {
     const YAML::Node n = rd_.need(map, key, path);
@@ -262,7 +270,7 @@ class SceneBuilder {
 namespace alphaflex::scene_detail {
 
 /// Spatial scenes (`dimension: 3`), scene_spatial.cpp.
-void read_spatial_bodies(Reader& rd, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity);
+void read_spatial_bodies(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity);
 void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity);
 /// Planar scenes: planar beams (x, y, θ nodes) from a mesh in the x-y plane.
 void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector2d& gravity);

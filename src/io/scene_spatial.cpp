@@ -66,7 +66,7 @@ SpatialMarker marker_at(const Model& m, int node, int slot, const Eigen::Vector3
 
 }  // namespace
 
-void read_spatial_bodies(Reader& rd, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity) {
+void read_spatial_bodies(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity) {
   if (!list) return;
   if (!list.IsSequence()) rd.fail(list, "bodies", "expected a list of bodies");
   for (size_t i = 0; i < list.size(); ++i) {
@@ -80,7 +80,7 @@ void read_spatial_bodies(Reader& rd, const YAML::Node& list, Model& model, const
     const std::string type = rd.text(rd.need(b, "type", path), path + ".type");
     if (type != "rigid_body")
       rd.fail(b["type"], path + ".type", "unknown body type '" + type + "' for dimension 3 (expected rigid_body; beams come from `beams`)");
-    rd.keys(b, path, {"name", "type", "mass", "inertia", "position", "orientation", "velocity", "angular_velocity"});
+    rd.keys(b, path, {"name", "type", "mass", "inertia", "position", "orientation", "velocity", "angular_velocity", "markers"});
     const double m = rd.positive(rd.need(b, "mass", path), path + ".mass", "mass (kg); a zero mass makes the mass matrix singular");
     const Eigen::Matrix3d J = read_inertia(rd, rd.need(b, "inertia", path), path + ".inertia");
     const Eigen::Vector3d x = rd.vec3(rd.need(b, "position", path), path + ".position");
@@ -97,6 +97,25 @@ void read_spatial_bodies(Reader& rd, const YAML::Node& list, Model& model, const
     nd.v0 << v, R.transpose() * w;  // Ω in the body frame
     const int id = model.add_node(nd);
     model.add_element(std::make_unique<RigidBody3D>(name, id, m, J, gravity));
+    // Markers: named frames fixed to the body (position and orientation in the body frame), for
+    // joints (marker1/marker2) and point sensors (marker).
+    if (const YAML::Node ml = b["markers"]) {
+      if (!ml.IsSequence()) rd.fail(ml, path + ".markers", "expected a list of {name, position, orientation}");
+      for (size_t k = 0; k < ml.size(); ++k) {
+        const YAML::Node mk = ml[k];
+        std::string mp = path + ".markers[" + std::to_string(k) + "]";
+        if (!mk.IsMap()) rd.fail(mk, mp, "expected a map {name, position, orientation}");
+        rd.keys(mk, mp, {"name", "position", "orientation"});
+        const std::string mname = rd.text(rd.need(mk, "name", mp), mp + ".name");
+        if (sb.markers.count(mname) || model.find_node(mname) >= 0)
+          rd.fail(mk["name"], mp + ".name", "the name '" + mname + "' is taken (marker names are unique in a scene)");
+        NamedMarker nm;
+        nm.node = id;
+        nm.position = rd.vec3(rd.need(mk, "position", mp), mp + ".position");
+        if (mk["orientation"]) nm.rotation = read_orientation(rd, mk["orientation"], mp + ".orientation");
+        sb.markers[mname] = nm;
+      }
+    }
   }
 }
 
@@ -121,7 +140,7 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       rd.fail(j["type"], path + ".type",
               "unknown joint type '" + tname + "' (expected spherical, universal, revolute, cylindrical, prismatic, planar, fixed)");
     const SpatialJointType type = it->second;
-    std::set<std::string> allowed{"name", "type", "body1", "body2", "location"};
+    std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2"};
     const bool has_axis = type != SpatialJointType::Spherical && type != SpatialJointType::Fixed;
     if (has_axis) allowed.insert("axis");
     if (type == SpatialJointType::Universal) allowed.insert("axis2");
@@ -131,13 +150,33 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
     if (type == SpatialJointType::Revolute || type == SpatialJointType::Cylindrical || type == SpatialJointType::Prismatic)
       allowed.insert("driver");
     rd.keys(j, path, allowed);
-    const int b1 = spatial_node(sb, j, "body1", path, false);
-    const int b2 = j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1;
-    if (b1 == b2) rd.fail(j["body2"], path + ".body2", "a joint needs two different bodies");
-    const Eigen::Vector3d loc = j["location"] ? rd.vec3(j["location"], path + ".location") : initial_pose(model, b1).x;
+    // A marker (a named frame of a body) stands for the body, the location and the joint frame.
+    auto marker_of = [&](const char* key) -> const NamedMarker* {
+      if (!j[key]) return nullptr;
+      const std::string mn = rd.text(j[key], path + "." + key);
+      const auto it = sb.markers.find(mn);
+      if (it == sb.markers.end()) rd.fail(j[key], path + "." + key, "no marker named '" + mn + "' (markers are listed under a body's `markers`)");
+      return &it->second;
+    };
+    const NamedMarker* mk1 = marker_of("marker1");
+    const NamedMarker* mk2 = marker_of("marker2");
+    if (mk1 && j["body1"]) rd.fail(j["body1"], path + ".body1", "give either body1 or marker1");
+    if (mk2 && j["body2"]) rd.fail(j["body2"], path + ".body2", "give either body2 or marker2");
+    if (mk1 && j["location"]) rd.fail(j["location"], path + ".location", "marker1 fixes the location; remove one of them");
+    if (!mk1 && !j["body1"]) rd.fail(j, path + ".body1", "missing (required): body1 or marker1");
+    const int b1 = mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false);
+    const int b2 = mk2 ? mk2->node : (j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1);
+    if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
+    const Pose<double> p1 = initial_pose(model, b1);
+    const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)
+                                : j["location"] ? rd.vec3(j["location"], path + ".location")
+                                                : p1.x;
     // Joint frame (world, t = 0): a3 along the axis; universal: a1 = axis (on body 1), a2 = axis2.
-    Eigen::Matrix3d R = initial_pose(model, b1).R;
-    if (type == SpatialJointType::Universal) {
+    // Without an axis key, a marker's frame is the joint frame (its z axis is the joint axis).
+    Eigen::Matrix3d R = mk1 ? Eigen::Matrix3d(p1.R * mk1->rotation) : p1.R;
+    if (mk1 && has_axis && !j["axis"]) {
+      R = p1.R * mk1->rotation;
+    } else if (type == SpatialJointType::Universal) {
       const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
       const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
       if (std::fabs(a1.dot(a2)) > 1e-9)
@@ -171,6 +210,13 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
           rd.fail(d["displacement"], path + ".driver.displacement", "a revolute joint has no translation to drive (use angle)");
         displacement = rd.function(d["displacement"], path + ".driver.displacement");
       }
+    }
+    if (mk2) {
+      const Pose<double> p2 = initial_pose(model, b2);
+      const Eigen::Vector3d at2 = p2.x + p2.R * mk2->position;
+      if ((at2 - loc).norm() > 1e-9 * std::max(1.0, loc.norm()))
+        rd.fail(j["marker2"], path + ".marker2",
+                "is not at the joint's location at t = 0 (distance " + std::to_string((at2 - loc).norm()) + " m)");
     }
     std::vector<int> nodes{b1};
     if (b2 >= 0) nodes.push_back(b2);
@@ -245,13 +291,22 @@ void read_spatial_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, 
     };
     if (type == "point_position" || type == "point_displacement" || type == "point_velocity" ||
         type == "point_acceleration") {
-      rd.keys(s, path, {"name", "type", "body", "point", "component", "relative_to"});
+      rd.keys(s, path, {"name", "type", "body", "point", "component", "relative_to", "marker"});
       sn.kind = type == "point_position"       ? Sensor::Kind::PointPosition
                 : type == "point_velocity"     ? Sensor::Kind::PointVelocity
                 : type == "point_acceleration" ? Sensor::Kind::PointAcceleration
                                                : Sensor::Kind::PointDisplacement;
-      sn.node = spatial_node(sb, s, "body", path, false);
-      sn.local = rd.vec3(s, "point", path, Eigen::Vector3d::Zero());
+      if (s["marker"]) {
+        if (s["body"] || s["point"]) rd.fail(s["marker"], path + ".marker", "give either marker or body/point");
+        const std::string mn = rd.text(s["marker"], path + ".marker");
+        const auto it = sb.markers.find(mn);
+        if (it == sb.markers.end()) rd.fail(s["marker"], path + ".marker", "no marker named '" + mn + "'");
+        sn.node = it->second.node;
+        sn.local = it->second.position;
+      } else {
+        sn.node = spatial_node(sb, s, "body", path, false);
+        sn.local = rd.vec3(s, "point", path, Eigen::Vector3d::Zero());
+      }
       sn.component = component({"x", "y", "z"});
       const Pose<double> p0 = initial_pose(model, sn.node);
       sn.initial = p0.x + p0.R * sn.local;
