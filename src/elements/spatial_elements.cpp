@@ -26,13 +26,13 @@ SpatialLoad::SpatialLoad(std::string name, int node, const Eigen::Vector3d& poin
       follower_(follower) {}
 
 template <class S>
-void SpatialLoad::operator()(const Pose<S>* frames, const S& t, KernelVector<S>& out) const {
+void SpatialLoad::residual(const Pose<S>* frames, const S& t, double factor, KernelVector<S>& out) const {
   const Pose<S>& f = frames[0];
   const double tv = ad::value(t);
   Vec3<S> F, M;
   for (int i = 0; i < 3; ++i) {
-    F[i] = S(factor_ * (force_[i] ? force_[i]->value(tv) : 0.0));
-    M[i] = S(factor_ * (moment_[i] ? moment_[i]->value(tv) : 0.0));
+    F[i] = S(factor * (force_[i] ? force_[i]->value(tv) : 0.0));
+    M[i] = S(factor * (moment_[i] ? moment_[i]->value(tv) : 0.0));
   }
   // Generalized force: δW = F_w·(δx + R (δθ × s)) + M_w·(R δθ), F_w and M_w in the world frame.
   const Vec3<S> Fw = follower_ ? Vec3<S>(f.R * F) : F;
@@ -45,14 +45,16 @@ void SpatialLoad::operator()(const Pose<S>* frames, const S& t, KernelVector<S>&
 }
 
 void SpatialLoad::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
-  factor_ = s.load_factor;
+  // The kernel carries the load factor of this evaluation (no state in the element).
+  const double factor = s.load_factor;
+  const auto kernel = [this, factor](const auto* frames, const auto& t, auto& out) { residual(frames, t, factor, out); };
   Eigen::VectorXd r;
   Eigen::MatrixXd K;
   if (tangent) {
-    kernel_jacobian(*this, s.q, s.t, r, K);
+    kernel_jacobian(kernel, s.q, s.t, r, K);
     out.K += K;
   } else {
-    kernel_value(*this, s.q, s.t, r);
+    kernel_value(kernel, s.q, s.t, r);
   }
   out.r += r;
 }

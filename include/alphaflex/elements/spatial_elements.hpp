@@ -38,14 +38,14 @@ class SpatialLoad final : public Element {
   const char* type() const override { return "load"; }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
+  /// The residual kernel (model/spatial_kernel.hpp) at load factor `factor`.
   template <class S>
-  void operator()(const Pose<S>* frames, const S& t, KernelVector<S>& out) const;
+  void residual(const Pose<S>* frames, const S& t, double factor, KernelVector<S>& out) const;
 
  private:
   Eigen::Vector3d point_;
   std::array<TimeFunctionPtr, 3> force_, moment_;
   bool follower_;
-  mutable double factor_ = 1.0;  // load factor of the current evaluation
 };
 
 }  // namespace alphaflex
