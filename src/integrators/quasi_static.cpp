@@ -17,9 +17,9 @@ QuasiStatic::QuasiStatic(SaddlePointSystem& system, LinearSolver& solver, Static
   if (opt_.steps < 1) throw InputError("the quasi-static analysis needs at least one load step");
 }
 
-bool QuasiStatic::equilibrium(MechanicalState& s, double lf, std::vector<NewtonRecord>& history, ModelVector& r) {
+bool QuasiStatic::equilibrium(MechanicalState& s, MechanicalState trial, double lf, std::vector<NewtonRecord>& history,
+                              ModelVector& r) {
   const Model& m = lin_.model();
-  MechanicalState trial = s;
   AssemblyCoefficients c;
   c.stiffness = 1.0;
   c.load_factor = lf;
@@ -59,10 +59,26 @@ StaticReport QuasiStatic::solve(MechanicalState& s, const std::function<void(con
   std::vector<NewtonRecord> history;
   ModelVector r;
   int cuts_here = 0;
+  bool have_previous = false;
+  MechanicalState previous;  // the converged state before the last one
+  double previous_lf = 0.0;
+  const Model& m = lin_.model();
   while (std::fabs(target - lf) > 1e-12 * std::max(1.0, std::fabs(target))) {
     if (std::fabs(dl) > std::fabs(target - lf)) dl = target - lf;
     const double next = lf + dl;
-    if (equilibrium(s, next, history, r)) {
+    MechanicalState trial = s;
+    if (have_previous && lf != previous_lf) {
+      const double ratio = (next - lf) / (lf - previous_lf);
+      m.retract(trial.q, ratio * m.difference(previous.q, s.q));
+      trial.lambda = s.lambda + ratio * (s.lambda - previous.lambda);
+    }
+    const MechanicalState before = s;
+    bool ok = equilibrium(s, trial, next, history, r);
+    if (!ok && have_previous) ok = equilibrium(s, before, next, history, r);  // without the predictor
+    if (ok) {
+      previous = before;
+      previous_lf = lf;
+      have_previous = true;
       lf = next;
       ++rep.load_steps;
       rep.iterations += static_cast<long>(history.size());

@@ -4,7 +4,9 @@
 // target. Same elements, joints, assembly and linear solver as the dynamics: S = [[K + K_Φ, Φ_qᵀ],
 // [Φ_q, 0]], Newton increments applied through the retraction q ← q ∘ exp(−Δ) on the group.
 // A load step whose Newton iteration fails is halved (adaptive step cut), down to a limit; the
-// step grows again (×1.5) after an easy step. Used for static benchmarks and for the pre-loaded
+// step grows again (×1.5) after an easy step. Each load step starts from the secant predictor,
+// the last converged state moved on along the path of the two before (q_k ∘ exp(s·log(q_{k−1}⁻¹q_k)),
+// s the ratio of the load increments), which saves Newton iterations on smooth load paths. Used for static benchmarks and for the pre-loaded
 // starting state of a dynamic run.
 #include <functional>
 
@@ -39,8 +41,10 @@ class QuasiStatic {
   PhaseTimes& times() { return lin_.times(); }
 
  private:
-  /// Newton at load factor `lf`; returns false (state unchanged) if it does not converge.
-  bool equilibrium(MechanicalState& s, double lf, std::vector<NewtonRecord>& history, ModelVector& r);
+  /// Newton at load factor `lf` from the start `trial`; on convergence `s` = the result. Returns
+  /// false (s unchanged) if it does not converge.
+  bool equilibrium(MechanicalState& s, MechanicalState trial, double lf, std::vector<NewtonRecord>& history,
+                   ModelVector& r);
 
   LinearizedSystem lin_;
   StaticOptions opt_;
