@@ -76,6 +76,24 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     }
     integrator.times().output += MPI_Wtime() - t0;
   };
+  // Closes the output and fills the summary (end of a static or a dynamic run).
+  auto finish = [&](const MechanicalState& final_state) {
+    if (writer) {
+      writer->finish();
+      sum.csv = writer->csv_path();
+      if (rs.hdf5) {
+        sum.h5 = writer->h5_path();
+        sum.xdmf = writer->xdmf_path();
+      }
+    }
+    sum.final_state = final_state;
+    sum.final_sensors = values;
+    sum.times = integrator.times();
+    sum.factorizations = solver.numeric_count();
+    sum.symbolic_analyses = solver.symbolic_count();
+    sum.wall = MPI_Wtime() - wall0;
+    return sum;
+  };
   MechanicalState s = model.initial_state();
   if (rs.analysis == Analysis::Static || rs.initial_static) {
     // Quasi-static load stepping (integrators/quasi_static.hpp): the whole analysis, or the
@@ -109,21 +127,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     integrator.times().solve += qs.times().solve;
     if (is_static) {
       sum.steps = rep.load_steps;
-      if (writer) {
-        writer->finish();
-        sum.csv = writer->csv_path();
-        if (rs.hdf5) {
-          sum.h5 = writer->h5_path();
-          sum.xdmf = writer->xdmf_path();
-        }
-      }
-      sum.final_state = s;
-      sum.final_sensors = values;
-      sum.times = integrator.times();
-      sum.factorizations = solver.numeric_count();
-      sum.symbolic_analyses = solver.symbolic_count();
-      sum.wall = MPI_Wtime() - wall0;
-      return sum;
+      return finish(s);
     }
   }
   if (!rs.integrator.consistent_start) {
@@ -193,21 +197,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     record(s, fields);
     if (fields) last_written = n;
   }
-  if (writer) {
-    writer->finish();
-    sum.csv = writer->csv_path();
-    if (rs.hdf5) {
-      sum.h5 = writer->h5_path();
-      sum.xdmf = writer->xdmf_path();
-    }
-  }
-  sum.final_state = s;
-  sum.final_sensors = values;
-  sum.times = integrator.times();
-  sum.factorizations = solver.numeric_count();
-  sum.symbolic_analyses = solver.symbolic_count();
-  sum.wall = MPI_Wtime() - wall0;
-  return sum;
+  return finish(s);
 }
 
 std::string format_summary(const Scene& scene, const RunSummary& s) {

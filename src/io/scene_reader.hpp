@@ -134,6 +134,34 @@ class Reader {
     return d.normalized();
   }
   const std::string& file() const { return file_; }
+
+  /// Opens item i of `sensors`: its checked name (unique, not `t`, no commas or quotes, so that it
+  /// can head a CSV column) and its path "sensors[NAME]" for later messages.
+  std::string sensor_name(const YAML::Node& s, size_t i, std::set<std::string>& names, std::string& path) const {
+    path = "sensors[" + std::to_string(i) + "]";
+    if (!s.IsMap()) fail(s, path, "expected a map with name, type, ...");
+    const std::string name = text(need(s, "name", path), path + ".name");
+    path = "sensors[" + name + "]";
+    if (name == "t") fail(s["name"], path + ".name", "'t' is reserved for the time column of the CSV");
+    if (!names.insert(name).second) fail(s["name"], path + ".name", "another sensor is named '" + name + "' already");
+    if (name.find_first_of(",\"\n") != std::string::npos)
+      fail(s["name"], path + ".name", "a sensor name may not contain commas or quotes");
+    return name;
+  }
+
+  /// The index of map[key] among `allowed`, or an error listing them.
+  int choice(const YAML::Node& map, const std::string& key, const std::string& path,
+             std::initializer_list<const char*> allowed) const {
+    const std::string c = text(need(map, key, path), path + "." + key);
+    int k = 0;
+    for (const char* a : allowed) {
+      if (c == a) return k;
+      ++k;
+    }
+    std::string l;
+    for (const char* a : allowed) l += std::string(l.empty() ? "" : ", ") + a;
+    fail(map[key], path + "." + key, "expected one of " + l);
+  }
   ExpressionScope& scope() { return scope_; }
 
   Eigen::Vector2d vec2(const YAML::Node& map, const std::string& k, const std::string& path,

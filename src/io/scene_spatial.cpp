@@ -268,27 +268,11 @@ void read_spatial_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, 
   std::set<std::string> names;
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node s = list[i];
-    std::string path = "sensors[" + std::to_string(i) + "]";
-    if (!s.IsMap()) rd.fail(s, path, "expected a map with name, type, ...");
+    std::string path;
     Sensor sn;
-    sn.name = rd.text(rd.need(s, "name", path), path + ".name");
-    path = "sensors[" + sn.name + "]";
-    if (sn.name == "t") rd.fail(s["name"], path + ".name", "'t' is reserved for the time column of the CSV");
-    if (!names.insert(sn.name).second) rd.fail(s["name"], path + ".name", "another sensor is named '" + sn.name + "' already");
-    if (sn.name.find_first_of(",\"\n") != std::string::npos)
-      rd.fail(s["name"], path + ".name", "a sensor name may not contain commas or quotes");
+    sn.name = rd.sensor_name(s, i, names, path);
     const std::string type = rd.text(rd.need(s, "type", path), path + ".type");
-    auto component = [&](std::initializer_list<const char*> allowed) {
-      const std::string c = rd.text(rd.need(s, "component", path), path + ".component");
-      int k = 0;
-      for (const char* a : allowed) {
-        if (c == a) return k;
-        ++k;
-      }
-      std::string l;
-      for (const char* a : allowed) l += std::string(l.empty() ? "" : ", ") + a;
-      rd.fail(s["component"], path + ".component", "expected one of " + l);
-    };
+    auto component = [&](std::initializer_list<const char*> allowed) { return rd.choice(s, "component", path, allowed); };
     if (type == "point_position" || type == "point_displacement" || type == "point_velocity" ||
         type == "point_acceleration") {
       rd.keys(s, path, {"name", "type", "body", "point", "component", "relative_to", "marker"});
