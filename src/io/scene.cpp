@@ -108,10 +108,8 @@ void read_bodies(Reader& rd, const YAML::Node& list, Model& model, const Eigen::
   if (!list.IsSequence()) rd.fail(list, "bodies", "expected a list of bodies");
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node b = list[i];
-    std::string path = "bodies[" + std::to_string(i) + "]";
-    if (!b.IsMap()) rd.fail(b, path, "expected a map with name, type, ...");
-    const std::string name = rd.text(rd.need(b, "name", path), path + ".name");
-    path = "bodies[" + name + "]";
+    std::string path;
+    const std::string name = rd.item_name(b, "bodies", i, "expected a map with name, type, ...", path);
     if (name == "ground") rd.fail(b["name"], path + ".name", "'ground' is reserved for the fixed frame");
     if (model.find_node(name) >= 0) rd.fail(b["name"], path + ".name", "a body named '" + name + "' exists already");
     const std::string type = rd.text(rd.need(b, "type", path), path + ".type");
@@ -172,10 +170,8 @@ void read_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& mo
   if (!list.IsSequence()) rd.fail(list, "joints", "expected a list of joints");
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node j = list[i];
-    std::string path = "joints[" + std::to_string(i) + "]";
-    if (!j.IsMap()) rd.fail(j, path, "expected a map with name, type, ...");
-    const std::string name = rd.text(rd.need(j, "name", path), path + ".name");
-    path = "joints[" + name + "]";
+    std::string path;
+    const std::string name = rd.item_name(j, "joints", i, "expected a map with name, type, ...", path);
     if (model.find_constraint(name) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + name + "' exists already");
     const std::string type = rd.text(rd.need(j, "type", path), path + ".type");
 
@@ -262,10 +258,8 @@ void read_forces(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& mo
   std::set<std::string> names;
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node f = list[i];
-    std::string path = "forces[" + std::to_string(i) + "]";
-    if (!f.IsMap()) rd.fail(f, path, "expected a map with name, type, ...");
-    const std::string name = rd.text(rd.need(f, "name", path), path + ".name");
-    path = "forces[" + name + "]";
+    std::string path;
+    const std::string name = rd.item_name(f, "forces", i, "expected a map with name, type, ...", path);
     if (!names.insert(name).second) rd.fail(f["name"], path + ".name", "a force named '" + name + "' exists already");
     const std::string type = rd.text(rd.need(f, "type", path), path + ".type");
     if (type == "spring_damper") {

@@ -135,13 +135,22 @@ class Reader {
   }
   const std::string& file() const { return file_; }
 
+  /// Opens item i of the list `list` (bodies, joints, forces, beams, sensors): checks that it is a
+  /// map (else `not_a_map`), reads its required `name`, and sets `path` to "list[NAME]" for the
+  /// messages that follow.
+  std::string item_name(const YAML::Node& item, const char* list, size_t i, const char* not_a_map,
+                        std::string& path) const {
+    path = std::string(list) + "[" + std::to_string(i) + "]";
+    if (!item.IsMap()) fail(item, path, not_a_map);
+    const std::string name = text(need(item, "name", path), path + ".name");
+    path = std::string(list) + "[" + name + "]";
+    return name;
+  }
+
   /// Opens item i of `sensors`: its checked name (unique, not `t`, no commas or quotes, so that it
   /// can head a CSV column) and its path "sensors[NAME]" for later messages.
   std::string sensor_name(const YAML::Node& s, size_t i, std::set<std::string>& names, std::string& path) const {
-    path = "sensors[" + std::to_string(i) + "]";
-    if (!s.IsMap()) fail(s, path, "expected a map with name, type, ...");
-    const std::string name = text(need(s, "name", path), path + ".name");
-    path = "sensors[" + name + "]";
+    const std::string name = item_name(s, "sensors", i, "expected a map with name, type, ...", path);
     if (name == "t") fail(s["name"], path + ".name", "'t' is reserved for the time column of the CSV");
     if (!names.insert(name).second) fail(s["name"], path + ".name", "another sensor is named '" + name + "' already");
     if (name.find_first_of(",\"\n") != std::string::npos)
