@@ -1,0 +1,651 @@
+#include "alphaflex/elements/shell.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "alphaflex/core/rotation.hpp"
+
+namespace alphaflex {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kStrains = 8;  // per quadrature point: 3 membrane, 3 bending, 2 transverse shear
+
+Eigen::Matrix3d hat3(const Eigen::Vector3d& v) { return hat<double>(v); }
+
+// ------------------------------------------------------------------ topologies (natural coordinates)
+
+/// Shape functions and their natural derivatives at (ξ, η).
+struct Shape {
+  Eigen::VectorXd N, dN1, dN2;
+};
+
+Shape shape(int n, double xi, double eta) {
+  Shape s;
+  s.N.resize(n);
+  s.dN1.resize(n);
+  s.dN2.resize(n);
+  if (n == 4) {
+    static const double xs[4] = {-1, 1, 1, -1}, es[4] = {-1, -1, 1, 1};
+    for (int I = 0; I < 4; ++I) {
+      s.N[I] = 0.25 * (1 + xs[I] * xi) * (1 + es[I] * eta);
+      s.dN1[I] = 0.25 * xs[I] * (1 + es[I] * eta);
+      s.dN2[I] = 0.25 * es[I] * (1 + xs[I] * xi);
+    }
+  } else {
+    s.N << 1 - xi - eta, xi, eta;
+    s.dN1 << -1, 1, 0;
+    s.dN2 << -1, 0, 1;
+  }
+  return s;
+}
+
+/// Natural coordinates of the nodes.
+Eigen::Vector2d node_coordinates(int n, int I) {
+  static const double q[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, t[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  return n == 4 ? Eigen::Vector2d(q[I][0], q[I][1]) : Eigen::Vector2d(t[I][0], t[I][1]);
+}
+
+/// Quadrature: 2×2 Gauss on the square (exact for the bilinear products of the energy, the mass
+/// and the EAS modes), the 3-point (edge-interior) rule on the triangle (exact for quadratics).
+struct Quadrature {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<double> weights;
+};
+
+const Quadrature& quadrature(int n) {
+  static const Quadrature quad = [] {
+    Quadrature q;
+    const double g = 1.0 / std::sqrt(3.0);
+    for (double e : {-g, g})
+      for (double x : {-g, g}) {
+        q.points.emplace_back(x, e);
+        q.weights.push_back(1.0);
+      }
+    return q;
+  }();
+  static const Quadrature tri = [] {
+    Quadrature q;
+    q.points = {Eigen::Vector2d(1.0 / 6, 1.0 / 6), Eigen::Vector2d(2.0 / 3, 1.0 / 6), Eigen::Vector2d(1.0 / 6, 2.0 / 3)};
+    q.weights = {1.0 / 6, 1.0 / 6, 1.0 / 6};
+    return q;
+  }();
+  return n == 4 ? quad : tri;
+}
+
+/// The covariant strains as bilinear forms in U = (x_1 … x_n, d_1 … d_n): s = ½ Σ_ab Q_ab U_a·U_b.
+using Form = Eigen::MatrixXd;
+
+Form zero_form(int n) { return Form::Zero(2 * n, 2 * n); }
+
+/// ε_αβ (2 × Voigt shear for α ≠ β): ½ (a_α·a_β) (× 2 for the shear entry).
+Form membrane_form(const Shape& s, int n, int a, int b) {
+  const Eigen::VectorXd& Da = a == 0 ? s.dN1 : s.dN2;
+  const Eigen::VectorXd& Db = b == 0 ? s.dN1 : s.dN2;
+  Form Q = zero_form(n);
+  const double f = a == b ? 0.5 : 1.0;  // Voigt: 2ε12 = a1·a2
+  for (int I = 0; I < n; ++I)
+    for (int J = 0; J < n; ++J) Q(I, J) = f * (Da[I] * Db[J] + Db[I] * Da[J]);
+  return Q;
+}
+
+/// κ_αβ = ½ (a_α·d,β + a_β·d,α) (Voigt: 2κ12 = a1·d,2 + a2·d,1).
+Form bending_form(const Shape& s, int n, int a, int b) {
+  const Eigen::VectorXd& Da = a == 0 ? s.dN1 : s.dN2;
+  const Eigen::VectorXd& Db = b == 0 ? s.dN1 : s.dN2;
+  Form Q = zero_form(n);
+  const double f = a == b ? 0.5 : 1.0;
+  for (int I = 0; I < n; ++I)
+    for (int J = 0; J < n; ++J) {
+      const double c = f * (Da[I] * Db[J] + Db[I] * Da[J]);  // coefficient of x_I·d_J
+      Q(I, n + J) += c;
+      Q(n + J, I) += c;
+    }
+  return Q;
+}
+
+/// γ_α = a_α·d at a point.
+Form shear_form(const Shape& s, int n, int a) {
+  const Eigen::VectorXd& Da = a == 0 ? s.dN1 : s.dN2;
+  Form Q = zero_form(n);
+  for (int I = 0; I < n; ++I)
+    for (int J = 0; J < n; ++J) {
+      Q(I, n + J) += Da[I] * s.N[J];
+      Q(n + J, I) += Da[I] * s.N[J];
+    }
+  return Q;
+}
+
+/// The assumed transverse shear strains (γ_1, γ_2) at (ξ, η):
+///  MITC4 (Dvorkin & Bathe 1984): tying points A(0, 1), B(−1, 0), C(0, −1), D(1, 0),
+///    γ_ξ = ½(1 + η) γ_ξ^A + ½(1 − η) γ_ξ^C,   γ_η = ½(1 + ξ) γ_η^D + ½(1 − ξ) γ_η^B;
+///  MITC3 (Lee & Bathe 2004): tangential strains at the edge midpoints (1) (½, 0), (2) (0, ½),
+///    (3) (½, ½), with the field γ_r = a1 + c s, γ_s = a2 − c r: a1 = γ_r^(1), a2 = γ_s^(2) and
+///    γ_s − γ_r at (3) equal to its tied value, c = γ_r^(3) − γ_s^(3) − γ_r^(1) + γ_s^(2).
+std::array<Form, 2> assumed_shear(int n, double xi, double eta) {
+  if (n == 4) {
+    const Shape A = shape(4, 0, 1), B = shape(4, -1, 0), C = shape(4, 0, -1), D = shape(4, 1, 0);
+    return {0.5 * (1 + eta) * shear_form(A, 4, 0) + 0.5 * (1 - eta) * shear_form(C, 4, 0),
+            0.5 * (1 + xi) * shear_form(D, 4, 1) + 0.5 * (1 - xi) * shear_form(B, 4, 1)};
+  }
+  const Shape p1 = shape(3, 0.5, 0), p2 = shape(3, 0, 0.5), p3 = shape(3, 0.5, 0.5);
+  const Form c = shear_form(p3, 3, 0) - shear_form(p3, 3, 1) - shear_form(p1, 3, 0) + shear_form(p2, 3, 1);
+  return {shear_form(p1, 3, 0) + eta * c, shear_form(p2, 3, 1) - xi * c};
+}
+
+/// The 8 forms at one point: ε11, ε22, 2ε12, κ11, κ22, 2κ12, γ1, γ2 (natural, covariant).
+std::array<Form, kStrains> forms_at(int n, double xi, double eta) {
+  const Shape s = shape(n, xi, eta);
+  const auto g = assumed_shear(n, xi, eta);
+  return {membrane_form(s, n, 0, 0), membrane_form(s, n, 1, 1), membrane_form(s, n, 0, 1),
+          bending_form(s, n, 0, 0),  bending_form(s, n, 1, 1),  bending_form(s, n, 0, 1),
+          g[0],                      g[1]};
+}
+
+/// All forms of a topology, quadrature point by quadrature point (the same for every element).
+const std::vector<Form>& topology_forms(int n) {
+  auto build = [](int nn) {
+    std::vector<Form> f;
+    for (const auto& p : quadrature(nn).points)
+      for (const Form& q : forms_at(nn, p[0], p[1])) f.push_back(q);
+    return f;
+  };
+  static const std::vector<Form> quad = build(4), tri = build(3);
+  return n == 4 ? quad : tri;
+}
+
+/// Values s_k = ½ Σ Q_ab U_a·U_b of all forms.
+Eigen::VectorXd form_values(const std::vector<Form>& Q, const Eigen::MatrixXd& U) {
+  Eigen::VectorXd s(static_cast<Eigen::Index>(Q.size()));
+  const Eigen::MatrixXd G = U * U.transpose();  // Gram matrix U_a·U_b
+  for (size_t k = 0; k < Q.size(); ++k) s[static_cast<Eigen::Index>(k)] = 0.5 * Q[k].cwiseProduct(G).sum();
+  return s;
+}
+
+/// Voigt transformation of covariant natural strains (ε11, ε22, 2ε12) to Cartesian ones in the
+/// basis e_i, with c(i, α) = e_i·A^α.
+Eigen::Matrix3d voigt_transform(const Eigen::Matrix2d& c) {
+  Eigen::Matrix3d T;
+  T << c(0, 0) * c(0, 0), c(0, 1) * c(0, 1), c(0, 0) * c(0, 1),  //
+      c(1, 0) * c(1, 0), c(1, 1) * c(1, 1), c(1, 0) * c(1, 1),  //
+      2 * c(0, 0) * c(1, 0), 2 * c(0, 1) * c(1, 1), c(0, 0) * c(1, 1) + c(0, 1) * c(1, 0);
+  return T;
+}
+
+/// c(i, α) = e_i·A^α for the reference tangents A_1, A_2 and the Cartesian axes e_1, e_2.
+Eigen::Matrix2d contravariant_components(const Eigen::Vector3d& A1, const Eigen::Vector3d& A2,
+                                         const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
+  Eigen::Matrix2d G;
+  G << A1.dot(A1), A1.dot(A2), A2.dot(A1), A2.dot(A2);
+  const Eigen::Matrix2d Gi = G.inverse();
+  const Eigen::Vector3d a1 = Gi(0, 0) * A1 + Gi(0, 1) * A2, a2 = Gi(1, 0) * A1 + Gi(1, 1) * A2;
+  Eigen::Matrix2d c;
+  c << e1.dot(a1), e1.dot(a2), e2.dot(a1), e2.dot(a2);
+  return c;
+}
+
+bool spd(const Eigen::MatrixXd& M) {
+  if (!M.allFinite() || (M - M.transpose()).cwiseAbs().maxCoeff() > 1e-12 * M.cwiseAbs().maxCoeff()) return false;
+  Eigen::LLT<Eigen::MatrixXd> llt(M);
+  return llt.info() == Eigen::Success;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ section
+
+ShellSection ShellSection::isotropic(double E, double nu, double rho, double t) {
+  if (!(E > 0) || !(t > 0) || !(rho >= 0) || !(nu > -1 && nu < 0.5))
+    throw std::invalid_argument("a shell needs E > 0, thickness > 0, rho >= 0 and -1 < nu < 0.5");
+  ShellSection s;
+  const double c = E * t / (1 - nu * nu);
+  s.A << c, c * nu, 0, c * nu, c, 0, 0, 0, c * (1 - nu) / 2;
+  s.D = s.A * (t * t / 12.0);
+  s.shear_modulus = E / (2 * (1 + nu));
+  s.As = Eigen::Matrix2d::Identity() * (5.0 / 6.0) * s.shear_modulus * t;
+  s.thickness = t;
+  s.mass = rho * t;
+  s.rotary = rho * t * t * t / 12.0;
+  s.homogeneous = true;
+  return s;
+}
+
+ShellSection ShellSection::laminate(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B, const Eigen::Matrix3d& D,
+                                    const Eigen::Matrix2d& As, double thickness, double mass, double rotary) {
+  Eigen::Matrix<double, 6, 6> abd;
+  abd << A, B, B.transpose(), D;
+  if (!spd(abd)) throw std::invalid_argument("the ABD matrix [[A, B], [B^T, D]] is not symmetric positive definite");
+  if (!spd(As)) throw std::invalid_argument("the transverse shear stiffness As is not symmetric positive definite");
+  if (!(thickness > 0) || !(mass >= 0) || !(rotary >= 0))
+    throw std::invalid_argument("a laminate needs thickness > 0, mass >= 0 and rotary >= 0");
+  ShellSection s;
+  s.A = A;
+  s.B = B;
+  s.D = D;
+  s.As = As;
+  s.thickness = thickness;
+  s.mass = mass;
+  s.rotary = rotary;
+  // A mean in-plane shear modulus for the drilling penalty: A66 / t.
+  s.shear_modulus = A(2, 2) / thickness;
+  return s;
+}
+
+// ------------------------------------------------------------------ element
+
+ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> nodes, const ShellSection& section,
+                                           const std::vector<Pose<double>>& reference,
+                                           const std::vector<Eigen::Vector3d>& directors,
+                                           const Eigen::Vector3d& material_axis, const Eigen::Vector3d& gravity,
+                                           const ShellOptions& options)
+    : Element(std::move(name), std::move(nodes)), section_(section), options_(options), g_(gravity) {
+  n_ = static_cast<int>(this->nodes().size());
+  if (n_ != 3 && n_ != 4) throw std::invalid_argument("a shell element has 3 or 4 nodes");
+  if (static_cast<int>(reference.size()) != n_ || static_cast<int>(directors.size()) != n_)
+    throw std::invalid_argument("a shell element needs one reference pose and one director per node");
+  for (int I = 0; I < n_; ++I)
+    for (int J = I + 1; J < n_; ++J)
+      if (this->nodes()[static_cast<size_t>(I)] == this->nodes()[static_cast<size_t>(J)])
+        throw std::invalid_argument("a shell element has a repeated node");
+  if (!(section.thickness > 0)) throw std::invalid_argument("the shell section has no thickness");
+
+  Eigen::MatrixXd X(n_, 3), D0(n_, 3);
+  for (int I = 0; I < n_; ++I) X.row(I) = reference[static_cast<size_t>(I)].x.transpose();
+
+  // Centre frame: tangents, normal, material axes.
+  const Eigen::Vector2d centre = n_ == 4 ? Eigen::Vector2d(0, 0) : Eigen::Vector2d(1.0 / 3, 1.0 / 3);
+  const Shape sc = shape(n_, centre[0], centre[1]);
+  const Eigen::Vector3d A1c = X.transpose() * sc.dN1, A2c = X.transpose() * sc.dN2;
+  const Eigen::Vector3d nc_raw = A1c.cross(A2c);
+  const double scale = std::max(1e-300, (X.rowwise() - X.row(0)).norm());
+  if (!(nc_raw.norm() > 1e-12 * scale * scale)) throw std::invalid_argument("the shell element is degenerate (zero area)");
+  const Eigen::Vector3d nc = nc_raw.normalized();
+  Eigen::Vector3d e1 = material_axis - material_axis.dot(nc) * nc;
+  if (!(e1.norm() > 1e-6 * material_axis.norm()))
+    throw std::invalid_argument("the material axis is along the element normal");
+  e1.normalize();
+  const Eigen::Vector3d e2 = nc.cross(e1);
+  frame_.col(0) = e1;
+  frame_.col(1) = e2;
+  frame_.col(2) = nc;
+
+  // Directors: unit, on the normal's side, within 60° of the element normal.
+  for (int I = 0; I < n_; ++I) {
+    const Eigen::Vector3d d = directors[static_cast<size_t>(I)];
+    if (!(std::fabs(d.norm() - 1.0) < 1e-8)) throw std::invalid_argument("a shell director is not a unit vector");
+    if (d.dot(nc) < std::cos(kPi / 3)) {
+      std::ostringstream m;
+      m << "the director at node " << I + 1 << " is " << std::acos(std::clamp(d.dot(nc), -1.0, 1.0)) * 180 / kPi
+        << " degrees from the element normal (at most 60; are the normals consistent?)";
+      throw std::invalid_argument(m.str());
+    }
+    D0.row(I) = d.transpose();
+    dbar_[static_cast<size_t>(I)] = reference[static_cast<size_t>(I)].R.transpose() * d;
+  }
+
+  // Quadrature points: Jacobians and Cartesian transformations.
+  const Quadrature& quad = quadrature(n_);
+  const int ngp = static_cast<int>(quad.points.size()), nforms = kStrains * ngp;
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(kStrains, kStrains);  // section stiffness on (ε, κ, γ)
+  S.block<3, 3>(0, 0) = section.A;
+  S.block<3, 3>(0, 3) = section.B;
+  S.block<3, 3>(3, 0) = section.B.transpose();
+  S.block<3, 3>(3, 3) = section.D;
+  S.block<2, 2>(6, 6) = section.As;
+
+  const bool eas = n_ == 4 && options.eas;
+  const int neas = eas ? 4 : 0;
+  const double j0 = nc_raw.norm();
+  const Eigen::Matrix3d T0 = voigt_transform(contravariant_components(A1c, A2c, e1, e2));
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nforms, nforms), L = Eigen::MatrixXd::Zero(nforms, neas),
+                  H = Eigen::MatrixXd::Zero(neas, neas);
+  T_ = Eigen::MatrixXd::Zero(kStrains * ngp, kStrains);  // per point, stacked: natural → Cartesian
+  EasOut_ = Eigen::MatrixXd::Zero(kStrains * ngp, std::max(neas, 1));
+  mass_ = Eigen::MatrixXd::Zero(n_, n_);
+  std::vector<double> wj(static_cast<size_t>(ngp));
+  area_ = 0.0;
+  for (int p = 0; p < ngp; ++p) {
+    const Eigen::Vector2d xp = quad.points[static_cast<size_t>(p)];
+    const Shape s = shape(n_, xp[0], xp[1]);
+    const Eigen::Vector3d A1 = X.transpose() * s.dN1, A2 = X.transpose() * s.dN2;
+    const double j = A1.cross(A2).dot(nc);
+    if (!(j > 1e-10 * j0)) throw std::invalid_argument("the shell element is inverted or degenerate (Jacobian <= 0)");
+    const double w = quad.weights[static_cast<size_t>(p)] * j;
+    wj[static_cast<size_t>(p)] = w;
+    area_ += w;
+    mass_ += w * s.N * s.N.transpose();
+    const Eigen::Matrix2d c = contravariant_components(A1, A2, e1, e2);
+    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(kStrains, kStrains);
+    T.block<3, 3>(0, 0) = voigt_transform(c);
+    T.block<3, 3>(3, 3) = voigt_transform(c);
+    T.block<2, 2>(6, 6) = c;
+    T_.block(kStrains * p, 0, kStrains, kStrains) = T;
+    K.block(kStrains * p, kStrains * p, kStrains, kStrains) = w * T.transpose() * S * T;
+    if (eas) {
+      // Enhanced membrane strain (Cartesian Voigt): (j0/j) T0 M(ξ, η) α, M = [ξ 0 0 0; 0 η 0 0; 0 0 ξ η]
+      // (Andelfinger & Ramm 1993): orthogonal to constant stresses, so the patch test holds.
+      Eigen::Matrix<double, 3, 4> M;
+      M << xp[0], 0, 0, 0, 0, xp[1], 0, 0, 0, 0, xp[0], xp[1];
+      Eigen::MatrixXd E = Eigen::MatrixXd::Zero(kStrains, 4);
+      E.topRows<3>() = (j0 / j) * T0 * M;
+      EasOut_.block(kStrains * p, 0, kStrains, 4) = E;
+      L.block(kStrains * p, 0, kStrains, 4) = w * T.transpose() * S * E;
+      H += w * E.transpose() * S * E;
+    }
+  }
+  // W = ½ sᵀK s + sᵀL α + ½ αᵀH α is quadratic in α: α = −H⁻¹Lᵀ s exactly (no element history).
+  C_ = K;
+  if (eas) {
+    Hinv_Lt_ = -H.ldlt().solve(L.transpose());
+    C_ += L * Hinv_Lt_;
+  }
+  S_ = S;
+  wj_ = wj;
+
+  // Reference values of the forms.
+  Eigen::MatrixXd U0(2 * n_, 3);
+  U0.topRows(n_) = X;
+  U0.bottomRows(n_) = D0;
+  s0_ = form_values(topology_forms(n_), U0);
+
+  // Drilling: ω_I = Σ_J x_J·R_I g_IJ (header), g_IJ = ½ (c_J1 P_I2 − c_J2 P_I1), c_Jβ = N_J,α(centre) (A^α·e_β),
+  // P_Ik = R_I0ᵀ e_k.
+  const Eigen::Matrix2d cc = contravariant_components(A1c, A2c, e1, e2);  // c(β, α) = e_β·A^α
+  for (int I = 0; I < n_; ++I) {
+    const Eigen::Matrix3d& R0 = reference[static_cast<size_t>(I)].R;
+    const Eigen::Vector3d P1 = R0.transpose() * e1, P2 = R0.transpose() * e2;
+    double w0 = 0.0;
+    for (int J = 0; J < n_; ++J) {
+      const double cJ1 = sc.dN1[J] * cc(0, 0) + sc.dN2[J] * cc(0, 1);
+      const double cJ2 = sc.dN1[J] * cc(1, 0) + sc.dN2[J] * cc(1, 1);
+      drill_g_[static_cast<size_t>(I)][static_cast<size_t>(J)] = 0.5 * (cJ1 * P2 - cJ2 * P1);
+      w0 += X.row(J).dot(R0 * drill_g_[static_cast<size_t>(I)][static_cast<size_t>(J)]);
+    }
+    drill_w0_[static_cast<size_t>(I)] = w0;
+    drill_k_[static_cast<size_t>(I)] = options.drilling_factor * section.shear_modulus * section.thickness * area_ / n_;
+  }
+}
+
+// ------------------------------------------------------------------ elastic forces
+
+void ReissnerMindlinShell::nodal_vectors(const Eigen::VectorXd& q, Eigen::MatrixXd& U,
+                                         std::array<Eigen::Matrix3d, kMaxNodes>& R) const {
+  U.resize(2 * n_, 3);
+  for (int I = 0; I < n_; ++I) {
+    const Pose<double> p = pose_of(q.data() + 7 * I);
+    R[static_cast<size_t>(I)] = p.R;
+    U.row(I) = p.x.transpose();
+    U.row(n_ + I) = (p.R * dbar_[static_cast<size_t>(I)]).transpose();
+  }
+}
+
+double ReissnerMindlinShell::elastic_energy(const Eigen::VectorXd& q) const {
+  Eigen::MatrixXd U;
+  std::array<Eigen::Matrix3d, kMaxNodes> R;
+  nodal_vectors(q, U, R);
+  const Eigen::VectorXd e = form_values(topology_forms(n_), U) - s0_;
+  double W = 0.5 * e.dot(C_ * e);
+  for (int I = 0; I < n_; ++I) {
+    double w = -drill_w0_[static_cast<size_t>(I)];
+    for (int J = 0; J < n_; ++J) w += U.row(J).dot(R[static_cast<size_t>(I)] * drill_g_[static_cast<size_t>(I)][static_cast<size_t>(J)]);
+    W += 0.5 * drill_k_[static_cast<size_t>(I)] * w * w;
+  }
+  return W;
+}
+
+void ReissnerMindlinShell::elastic_forces(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* Kout) const {
+  const std::vector<Form>& Q = topology_forms(n_);
+  const int nf = static_cast<int>(Q.size()), nd = 6 * n_;
+  Eigen::MatrixXd U;
+  std::array<Eigen::Matrix3d, kMaxNodes> R;
+  nodal_vectors(q, U, R);
+  const Eigen::VectorXd sigma = C_ * (form_values(Q, U) - s0_);
+
+  // r_U = (Σ σ_k Q_k) U.
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
+  for (int k = 0; k < nf; ++k) G += sigma[k] * Q[static_cast<size_t>(k)];
+  const Eigen::MatrixXd rU = G * U;
+  // δd_I = Λ_I δθ_I, Λ_I = −R_I D̄_I^.
+  std::array<Eigen::Matrix3d, kMaxNodes> Lam;
+  for (int I = 0; I < n_; ++I) Lam[static_cast<size_t>(I)] = -R[static_cast<size_t>(I)] * hat3(dbar_[static_cast<size_t>(I)]);
+  r = Eigen::VectorXd::Zero(nd);
+  for (int I = 0; I < n_; ++I) {
+    r.segment<3>(6 * I) = rU.row(I).transpose();
+    r.segment<3>(6 * I + 3) = Lam[static_cast<size_t>(I)].transpose() * rU.row(n_ + I).transpose();
+  }
+  if (Kout) {
+    Eigen::MatrixXd& K = *Kout;
+    // B P: row k = (Q_k U) mapped to (δx, δθ).
+    Eigen::MatrixXd BP(nf, nd);
+    for (int k = 0; k < nf; ++k) {
+      const Eigen::MatrixXd QU = Q[static_cast<size_t>(k)] * U;
+      for (int I = 0; I < n_; ++I) {
+        BP.block<1, 3>(k, 6 * I) = QU.row(I);
+        BP.block<1, 3>(k, 6 * I + 3) = QU.row(n_ + I) * Lam[static_cast<size_t>(I)];
+      }
+    }
+    K = BP.transpose() * C_ * BP;
+    for (int I = 0; I < n_; ++I)
+      for (int J = 0; J < n_; ++J) {
+        const auto& LI = Lam[static_cast<size_t>(I)];
+        const auto& LJ = Lam[static_cast<size_t>(J)];
+        K.block<3, 3>(6 * I, 6 * J).diagonal().array() += G(I, J);
+        K.block<3, 3>(6 * I, 6 * J + 3) += G(I, n_ + J) * LJ;
+        K.block<3, 3>(6 * I + 3, 6 * J) += G(n_ + I, J) * LI.transpose();
+        K.block<3, 3>(6 * I + 3, 6 * J + 3) += G(n_ + I, n_ + J) * LI.transpose() * LJ;
+      }
+    // Second derivative of the director on the group: r_d·R ê_j ê_k D̄ = (w D̄ᵀ − (w·D̄) I)_kj, w = Rᵀ r_d.
+    for (int I = 0; I < n_; ++I) {
+      const Eigen::Vector3d w = R[static_cast<size_t>(I)].transpose() * rU.row(n_ + I).transpose();
+      const Eigen::Vector3d& Db = dbar_[static_cast<size_t>(I)];
+      K.block<3, 3>(6 * I + 3, 6 * I + 3) += w * Db.transpose() - w.dot(Db) * Eigen::Matrix3d::Identity();
+    }
+  }
+
+  // Drilling penalty ½ k ω², ω_I = Σ_J x_J·R_I g_IJ − ω0_I.
+  for (int I = 0; I < n_; ++I) {
+    const double k = drill_k_[static_cast<size_t>(I)];
+    if (k == 0.0) continue;
+    const Eigen::Matrix3d& RI = R[static_cast<size_t>(I)];
+    Eigen::VectorXd grad = Eigen::VectorXd::Zero(nd);
+    double w = -drill_w0_[static_cast<size_t>(I)];
+    for (int J = 0; J < n_; ++J) {
+      const Eigen::Vector3d& g = drill_g_[static_cast<size_t>(I)][static_cast<size_t>(J)];
+      const Eigen::Vector3d xJ = U.row(J).transpose();
+      w += xJ.dot(RI * g);
+      grad.segment<3>(6 * J) += RI * g;
+      grad.segment<3>(6 * I + 3) += g.cross(RI.transpose() * xJ);
+    }
+    r += k * w * grad;
+    if (!Kout) continue;
+    Eigen::MatrixXd& K = *Kout;
+    K += k * grad * grad.transpose();
+    for (int J = 0; J < n_; ++J) {
+      const Eigen::Vector3d& g = drill_g_[static_cast<size_t>(I)][static_cast<size_t>(J)];
+      const Eigen::Vector3d y = RI.transpose() * U.row(J).transpose();
+      K.block<3, 3>(6 * J, 6 * I + 3) += k * w * (-RI * hat3(g));
+      K.block<3, 3>(6 * I + 3, 6 * J) += k * w * (hat3(g) * RI.transpose());
+      K.block<3, 3>(6 * I + 3, 6 * I + 3) += k * w * (y * g.transpose() - y.dot(g) * Eigen::Matrix3d::Identity());
+    }
+  }
+}
+
+// ------------------------------------------------------------------ inertia, gravity
+
+void ReissnerMindlinShell::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+  {
+    Eigen::VectorXd r;
+    Eigen::MatrixXd K;
+    elastic_forces(s.q, r, tangent ? &K : nullptr);
+    out.r += r;
+    if (tangent) out.K += K;
+  }
+  const double rhot = section_.mass, Ir = section_.rotary;
+  std::array<Eigen::Matrix3d, kMaxNodes> R;
+  for (int I = 0; I < n_; ++I) R[static_cast<size_t>(I)] = pose_of(s.q.data() + 7 * I).R;
+  // Translation: consistent mass; gravity ∫ ρt N_I g dA.
+  const Eigen::VectorXd Nint = mass_.rowwise().sum();  // ∫ N_I dA (Σ_J N_J = 1)
+  for (int I = 0; I < n_; ++I) {
+    for (int J = 0; J < n_; ++J) out.r.segment<3>(6 * I) += rhot * mass_(I, J) * s.qdd.segment<3>(6 * J);
+    out.r.segment<3>(6 * I) -= s.load_factor * rhot * Nint[I] * g_;
+  }
+  // Director inertia: r_θI = Λ_Iᵀ Σ_J m_IJ d̈_J, d̈_J = R_J (Ω̇_J × D̄_J + Ω_J × (Ω_J × D̄_J)).
+  std::array<Eigen::Vector3d, kMaxNodes> gJ, ddot;
+  std::array<Eigen::Matrix3d, kMaxNodes> Lam;
+  for (int J = 0; J < n_; ++J) {
+    const Eigen::Vector3d W = s.v.segment<3>(6 * J + 3), Wd = s.qdd.segment<3>(6 * J + 3);
+    const Eigen::Vector3d& Db = dbar_[static_cast<size_t>(J)];
+    gJ[static_cast<size_t>(J)] = Wd.cross(Db) + W.cross(W.cross(Db));
+    ddot[static_cast<size_t>(J)] = R[static_cast<size_t>(J)] * gJ[static_cast<size_t>(J)];
+    Lam[static_cast<size_t>(J)] = -R[static_cast<size_t>(J)] * hat3(Db);
+  }
+  for (int I = 0; I < n_; ++I) {
+    Eigen::Vector3d z = Eigen::Vector3d::Zero();
+    for (int J = 0; J < n_; ++J) z += Ir * mass_(I, J) * ddot[static_cast<size_t>(J)];
+    out.r.segment<3>(6 * I + 3) += Lam[static_cast<size_t>(I)].transpose() * z;
+    // Drilling inertia about D̄_I (lumped), a rigid axisymmetric term J Ω̇ + Ω × J Ω.
+    const Eigen::Vector3d& Db = dbar_[static_cast<size_t>(I)];
+    const double jd = options_.drilling_inertia_factor * Ir * mass_.row(I).sum();
+    const Eigen::Matrix3d Jd = jd * Db * Db.transpose();
+    const Eigen::Vector3d W = s.v.segment<3>(6 * I + 3), Wd = s.qdd.segment<3>(6 * I + 3);
+    out.r.segment<3>(6 * I + 3) += Jd * Wd + W.cross(Jd * W);
+    if (!tangent) continue;
+    for (int J = 0; J < n_; ++J) {
+      const Eigen::Vector3d WJ = s.v.segment<3>(6 * J + 3);
+      const Eigen::Vector3d& DJ = dbar_[static_cast<size_t>(J)];
+      const double m = rhot * mass_(I, J), mr = Ir * mass_(I, J);
+      out.M.block<3, 3>(6 * I, 6 * J).diagonal().array() += m;
+      out.M.block<3, 3>(6 * I + 3, 6 * J + 3) += mr * Lam[static_cast<size_t>(I)].transpose() * Lam[static_cast<size_t>(J)];
+      const Eigen::Matrix3d dg = WJ.dot(DJ) * Eigen::Matrix3d::Identity() + WJ * DJ.transpose() - 2.0 * DJ * WJ.transpose();
+      out.C.block<3, 3>(6 * I + 3, 6 * J + 3) += mr * Lam[static_cast<size_t>(I)].transpose() * R[static_cast<size_t>(J)] * dg;
+      out.K.block<3, 3>(6 * I + 3, 6 * J + 3) +=
+          mr * Lam[static_cast<size_t>(I)].transpose() * (-R[static_cast<size_t>(J)] * hat3(gJ[static_cast<size_t>(J)]));
+    }
+    const Eigen::Vector3d w = R[static_cast<size_t>(I)].transpose() * z;
+    out.K.block<3, 3>(6 * I + 3, 6 * I + 3) += w * Db.transpose() - w.dot(Db) * Eigen::Matrix3d::Identity();
+    out.M.block<3, 3>(6 * I + 3, 6 * I + 3) += Jd;
+    out.C.block<3, 3>(6 * I + 3, 6 * I + 3) += hat3(W) * Jd - hat3(Jd * W);
+  }
+}
+
+// ------------------------------------------------------------------ output
+
+std::vector<std::string> ReissnerMindlinShell::output_names() const {
+  return {"n11", "n22", "n12", "m11", "m22", "m12", "q1", "q2", "von_mises_top", "von_mises_bottom"};
+}
+
+void ReissnerMindlinShell::output(const LocalState& s, Eigen::VectorXd& values) const {
+  Eigen::MatrixXd U;
+  std::array<Eigen::Matrix3d, kMaxNodes> R;
+  nodal_vectors(s.q, U, R);
+  const Eigen::VectorXd e = form_values(topology_forms(n_), U) - s0_;
+  Eigen::VectorXd alpha;
+  if (Hinv_Lt_.size() > 0) alpha = Hinv_Lt_ * e;
+  // Area-weighted mean of the resultants over the quadrature points.
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(kStrains);
+  const int ngp = static_cast<int>(wj_.size());
+  for (int p = 0; p < ngp; ++p) {
+    Eigen::VectorXd strain = T_.block(kStrains * p, 0, kStrains, kStrains) * e.segment(kStrains * p, kStrains);
+    if (alpha.size() > 0) strain += EasOut_.block(kStrains * p, 0, kStrains, 4) * alpha;
+    mean += wj_[static_cast<size_t>(p)] * (S_ * strain);
+  }
+  mean /= area_;
+  values.resize(10);
+  values.head<8>() = mean;
+  const double t = section_.thickness;
+  for (int side = 0; side < 2; ++side) {
+    const double f = side == 0 ? 6.0 / (t * t) : -6.0 / (t * t);
+    const double s11 = mean[0] / t + f * mean[3], s22 = mean[1] / t + f * mean[4], s12 = mean[2] / t + f * mean[5];
+    values[8 + side] = std::sqrt(std::max(0.0, s11 * s11 + s22 * s22 - s11 * s22 + 3.0 * s12 * s12));
+  }
+}
+
+// ------------------------------------------------------------------ pressure
+
+ShellPressure::ShellPressure(std::string name, std::vector<int> nodes, const std::vector<Eigen::Vector3d>& X,
+                             TimeFunctionPtr pressure, bool follower)
+    : Element(std::move(name), std::move(nodes)), p_(std::move(pressure)), follower_(follower) {
+  n_ = static_cast<int>(this->nodes().size());
+  if ((n_ != 3 && n_ != 4) || static_cast<int>(X.size()) != n_)
+    throw std::invalid_argument("a pressure load acts on a 3- or 4-node shell element");
+  const Quadrature& quad = quadrature(n_);
+  for (int I = 0; I < n_; ++I) fixed_[static_cast<size_t>(I)].setZero();
+  for (size_t p = 0; p < quad.points.size(); ++p) {
+    const Shape s = shape(n_, quad.points[p][0], quad.points[p][1]);
+    Eigen::Vector3d A1 = Eigen::Vector3d::Zero(), A2 = Eigen::Vector3d::Zero();
+    for (int J = 0; J < n_; ++J) {
+      A1 += s.dN1[J] * X[static_cast<size_t>(J)];
+      A2 += s.dN2[J] * X[static_cast<size_t>(J)];
+    }
+    for (int I = 0; I < n_; ++I) fixed_[static_cast<size_t>(I)] += quad.weights[p] * s.N[I] * A1.cross(A2);
+  }
+}
+
+void ShellPressure::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+  const double p = s.load_factor * p_->value(s.t);
+  if (!follower_) {
+    for (int I = 0; I < n_; ++I) out.r.segment<3>(6 * I) += p * fixed_[static_cast<size_t>(I)];
+    return;
+  }
+  const Quadrature& quad = quadrature(n_);
+  for (size_t q = 0; q < quad.points.size(); ++q) {
+    const Shape sh = shape(n_, quad.points[q][0], quad.points[q][1]);
+    Eigen::Vector3d a1 = Eigen::Vector3d::Zero(), a2 = Eigen::Vector3d::Zero();
+    for (int J = 0; J < n_; ++J) {
+      const Eigen::Vector3d x(s.q[7 * J], s.q[7 * J + 1], s.q[7 * J + 2]);
+      a1 += sh.dN1[J] * x;
+      a2 += sh.dN2[J] * x;
+    }
+    const double w = quad.weights[q] * p;
+    const Eigen::Vector3d n = a1.cross(a2);
+    for (int I = 0; I < n_; ++I) {
+      out.r.segment<3>(6 * I) += w * sh.N[I] * n;
+      if (!tangent) continue;
+      for (int J = 0; J < n_; ++J)
+        out.K.block<3, 3>(6 * I, 6 * J) += w * sh.N[I] * (-sh.dN1[J] * hat3(a2) + sh.dN2[J] * hat3(a1));
+    }
+  }
+}
+
+// ------------------------------------------------------------------ directors
+
+std::vector<std::vector<Eigen::Vector3d>> shell_directors(const std::vector<Eigen::Vector3d>& points,
+                                                          const std::vector<std::vector<int>>& elements,
+                                                          double kink_angle) {
+  // Unit normal of each element at each of its nodes (a_1 × a_2 there).
+  std::vector<std::vector<Eigen::Vector3d>> normal(elements.size());
+  std::vector<Eigen::Vector3d> sum(points.size(), Eigen::Vector3d::Zero());
+  for (size_t e = 0; e < elements.size(); ++e) {
+    const int n = static_cast<int>(elements[e].size());
+    if (n != 3 && n != 4) throw std::invalid_argument("a shell element has 3 or 4 nodes");
+    for (int I = 0; I < n; ++I) {
+      const Eigen::Vector2d xi = node_coordinates(n, I);
+      const Shape s = shape(n, xi[0], xi[1]);
+      Eigen::Vector3d A1 = Eigen::Vector3d::Zero(), A2 = Eigen::Vector3d::Zero();
+      for (int J = 0; J < n; ++J) {
+        const Eigen::Vector3d& X = points[static_cast<size_t>(elements[e][static_cast<size_t>(J)])];
+        A1 += s.dN1[J] * X;
+        A2 += s.dN2[J] * X;
+      }
+      Eigen::Vector3d nn = A1.cross(A2);
+      if (nn.norm() > 0) nn.normalize();
+      normal[e].push_back(nn);
+      sum[static_cast<size_t>(elements[e][static_cast<size_t>(I)])] += nn;
+    }
+  }
+  const double cos_kink = std::cos(kink_angle);
+  std::vector<std::vector<Eigen::Vector3d>> d(elements.size());
+  for (size_t e = 0; e < elements.size(); ++e)
+    for (size_t I = 0; I < elements[e].size(); ++I) {
+      const Eigen::Vector3d& m = sum[static_cast<size_t>(elements[e][I])];
+      const Eigen::Vector3d& ne = normal[e][I];
+      if (m.norm() > 1e-12 && m.normalized().dot(ne) >= cos_kink) d[e].push_back(m.normalized());
+      else d[e].push_back(ne);
+    }
+  return d;
+}
+
+}  // namespace alphaflex
