@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -136,25 +137,76 @@ std::array<Form, 2> assumed_shear(int n, double xi, double eta) {
   return {shear_form(p1, 3, 0) + eta * c, shear_form(p2, 3, 1) - xi * c};
 }
 
-/// The 8 forms at one point: ε11, ε22, 2ε12, κ11, κ22, 2κ12, γ1, γ2 (natural, covariant).
-std::array<Form, kStrains> forms_at(int n, double xi, double eta) {
-  const Shape s = shape(n, xi, eta);
-  const auto g = assumed_shear(n, xi, eta);
-  return {membrane_form(s, n, 0, 0), membrane_form(s, n, 1, 1), membrane_form(s, n, 0, 1),
-          bending_form(s, n, 0, 0),  bending_form(s, n, 1, 1),  bending_form(s, n, 0, 1),
-          g[0],                      g[1]};
+/// The 8 forms at one point: ε11, ε22, 2ε12, κ11, κ22, 2κ12, γ1, γ2 (natural, covariant). `X`: the
+/// element's reference node positions (the quadrilateral's assumed membrane strains depend on its
+/// geometry, below).
+std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X);
+
+/// The quadrilateral's assumed membrane strains, against membrane locking in curved shells:
+/// ε11 tied at the edge midpoints (0, ±1), ε22 at (±1, 0), ε12 at the centre (as the MITC4 shear,
+/// Dvorkin & Bathe 1984; the constant ε12 also removes the in-plane parasitic shear), plus a
+/// correction that restores the patch test on distorted elements: for a homogeneous strain Ē the
+/// covariant components A_α(P)·Ē·A_β(P) vary over a non-parallelogram, and the tying would miss
+/// that variation; adding f(P) − ANS[f](P) with f_αβ(P) = A_α(P)·Ē·A_β(P) and Ē the strain at the
+/// centre makes every homogeneous deformation exact, and vanishes on parallelograms.
+std::array<Form, 3> assumed_membrane(double xi, double eta, const Eigen::MatrixXd& X) {
+  auto plain = [](double x, double e) {
+    const Shape s = shape(4, x, e);
+    return std::array<Form, 3>{membrane_form(s, 4, 0, 0), membrane_form(s, 4, 1, 1), membrane_form(s, 4, 0, 1)};
+  };
+  const Shape sc = shape(4, 0, 0);
+  const Eigen::Vector3d A1c = X.transpose() * sc.dN1, A2c = X.transpose() * sc.dN2;
+  Eigen::Matrix2d G;
+  G << A1c.dot(A1c), A1c.dot(A2c), A2c.dot(A1c), A2c.dot(A2c);
+  const Eigen::Matrix2d Gi = G.inverse();
+  const std::array<Eigen::Vector3d, 2> Ac = {Gi(0, 0) * A1c + Gi(0, 1) * A2c, Gi(1, 0) * A1c + Gi(1, 1) * A2c};
+  const std::array<Form, 3> centre = plain(0, 0);
+  // f at a point, as forms: Σ_γδ m_αγ m_βδ ε_γδ(0), m_αγ = A_α(P)·A^γ(0), ε12 = ½ (2ε12 form).
+  auto f_at = [&](double x, double e) {
+    const Shape s = shape(4, x, e);
+    const std::array<Eigen::Vector3d, 2> A = {X.transpose() * s.dN1, X.transpose() * s.dN2};
+    Eigen::Matrix2d m;
+    for (int a = 0; a < 2; ++a)
+      for (int g = 0; g < 2; ++g) m(a, g) = A[static_cast<size_t>(a)].dot(Ac[static_cast<size_t>(g)]);
+    auto eps = [&](int g, int d) -> Form { return g == d ? centre[static_cast<size_t>(g)] : Form(0.5 * centre[2]); };
+    auto comp = [&](int a, int b) {
+      Form F = zero_form(4);
+      for (int g = 0; g < 2; ++g)
+        for (int d = 0; d < 2; ++d) F += m(a, g) * m(b, d) * eps(g, d);
+      return F;
+    };
+    return std::array<Form, 3>{comp(0, 0), comp(1, 1), Form(2.0 * comp(0, 1))};
+  };
+  auto tied = [&](const auto& field) {
+    const auto A = field(0, 1), C = field(0, -1), B = field(-1, 0), D = field(1, 0), O = field(0, 0);
+    return std::array<Form, 3>{0.5 * (1 + eta) * A[0] + 0.5 * (1 - eta) * C[0],
+                               0.5 * (1 + xi) * D[1] + 0.5 * (1 - xi) * B[1], O[2]};
+  };
+  const auto ans = tied(plain), ans_f = tied(f_at), f = f_at(xi, eta);
+  return {ans[0] + f[0] - ans_f[0], ans[1] + f[1] - ans_f[1], ans[2] + f[2] - ans_f[2]};
 }
 
-/// All forms of a topology, quadrature point by quadrature point (the same for every element).
-const std::vector<Form>& topology_forms(int n) {
-  auto build = [](int nn) {
-    std::vector<Form> f;
+std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X) {
+  const Shape s = shape(n, xi, eta);
+  const auto g = assumed_shear(n, xi, eta);
+  const std::array<Form, 3> m = n == 4 ? assumed_membrane(xi, eta, X)
+                                       : std::array<Form, 3>{membrane_form(s, n, 0, 0), membrane_form(s, n, 1, 1),
+                                                             membrane_form(s, n, 0, 1)};
+  return {m[0], m[1], m[2], bending_form(s, n, 0, 0), bending_form(s, n, 1, 1), bending_form(s, n, 0, 1), g[0], g[1]};
+}
+
+/// All forms of an element, quadrature point by quadrature point: the triangle's are the same for
+/// every element (shared), the quadrilateral's membrane forms depend on its reference geometry.
+std::shared_ptr<const std::vector<Form>> element_forms(int n, const Eigen::MatrixXd& X) {
+  auto build = [](int nn, const Eigen::MatrixXd& XX) {
+    auto f = std::make_shared<std::vector<Form>>();
     for (const auto& p : quadrature(nn).points)
-      for (const Form& q : forms_at(nn, p[0], p[1])) f.push_back(q);
+      for (const Form& q : forms_at(nn, p[0], p[1], XX)) f->push_back(q);
     return f;
   };
-  static const std::vector<Form> quad = build(4), tri = build(3);
-  return n == 4 ? quad : tri;
+  if (n == 4) return build(4, X);
+  static const std::shared_ptr<const std::vector<Form>> tri = build(3, Eigen::MatrixXd::Zero(3, 3));
+  return tri;
 }
 
 /// Values s_k = ½ Σ Q_ab U_a·U_b of all forms.
@@ -300,12 +352,10 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
   const int neas = eas ? 4 : 0;
   const double j0 = nc_raw.norm();
   const Eigen::Matrix3d T0 = voigt_transform(contravariant_components(A1c, A2c, e1, e2));
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nforms, nforms), L = Eigen::MatrixXd::Zero(nforms, neas),
-                  H = Eigen::MatrixXd::Zero(neas, neas);
   T_ = Eigen::MatrixXd::Zero(kStrains * ngp, kStrains);  // per point, stacked: natural → Cartesian
   EasOut_ = Eigen::MatrixXd::Zero(kStrains * ngp, std::max(neas, 1));
   mass_ = Eigen::MatrixXd::Zero(n_, n_);
-  std::vector<double> wj(static_cast<size_t>(ngp));
+  wj_.assign(static_cast<size_t>(ngp), 0.0);
   area_ = 0.0;
   for (int p = 0; p < ngp; ++p) {
     const Eigen::Vector2d xp = quad.points[static_cast<size_t>(p)];
@@ -314,7 +364,7 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
     const double j = A1.cross(A2).dot(nc);
     if (!(j > 1e-10 * j0)) throw std::invalid_argument("the shell element is inverted or degenerate (Jacobian <= 0)");
     const double w = quad.weights[static_cast<size_t>(p)] * j;
-    wj[static_cast<size_t>(p)] = w;
+    wj_[static_cast<size_t>(p)] = w;
     area_ += w;
     mass_ += w * s.N * s.N.transpose();
     const Eigen::Matrix2d c = contravariant_components(A1, A2, e1, e2);
@@ -323,33 +373,75 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
     T.block<3, 3>(3, 3) = voigt_transform(c);
     T.block<2, 2>(6, 6) = c;
     T_.block(kStrains * p, 0, kStrains, kStrains) = T;
-    K.block(kStrains * p, kStrains * p, kStrains, kStrains) = w * T.transpose() * S * T;
     if (eas) {
       // Enhanced membrane strain (Cartesian Voigt): (j0/j) T0 M(ξ, η) α, M = [ξ 0 0 0; 0 η 0 0; 0 0 ξ η]
       // (Andelfinger & Ramm 1993): orthogonal to constant stresses, so the patch test holds.
       Eigen::Matrix<double, 3, 4> M;
       M << xp[0], 0, 0, 0, 0, xp[1], 0, 0, 0, 0, xp[0], xp[1];
-      Eigen::MatrixXd E = Eigen::MatrixXd::Zero(kStrains, 4);
-      E.topRows<3>() = (j0 / j) * T0 * M;
-      EasOut_.block(kStrains * p, 0, kStrains, 4) = E;
+      EasOut_.block(kStrains * p, 0, 3, 4) = (j0 / j) * T0 * M;
+    }
+  }
+
+  // The strain forms; for the quadrilateral the membrane ones become Cartesian here: the assumed
+  // (tied) strain is the compatible one plus Δ(P) = T_P (ε̃(P) − ε(P)), less Δ's mean over the
+  // element, so that ∫ δε̂ dA = ∫ δε dA: constant stresses see no difference (the second half of the
+  // patch test; the first, exact homogeneous strains, is assumed_membrane's correction).
+  auto forms = element_forms(n_, X);
+  if (n_ == 4) {
+    auto own = std::make_shared<std::vector<Form>>(*forms);
+    std::vector<std::array<Form, 3>> delta(static_cast<size_t>(ngp));
+    std::array<Form, 3> mean = {zero_form(4), zero_form(4), zero_form(4)};
+    for (int p = 0; p < ngp; ++p) {
+      const Eigen::Vector2d xp = quad.points[static_cast<size_t>(p)];
+      const Shape s = shape(4, xp[0], xp[1]);
+      const std::array<Form, 3> plain = {membrane_form(s, 4, 0, 0), membrane_form(s, 4, 1, 1), membrane_form(s, 4, 0, 1)};
+      const Eigen::Matrix3d Tm = T_.block<3, 3>(kStrains * p, 0);
+      for (int i = 0; i < 3; ++i) {
+        Form d = zero_form(4), c = zero_form(4);
+        for (int k = 0; k < 3; ++k) {
+          d += Tm(i, k) * ((*forms)[static_cast<size_t>(kStrains * p + k)] - plain[static_cast<size_t>(k)]);
+          c += Tm(i, k) * plain[static_cast<size_t>(k)];
+        }
+        delta[static_cast<size_t>(p)][static_cast<size_t>(i)] = d;
+        mean[static_cast<size_t>(i)] += (wj_[static_cast<size_t>(p)] / area_) * d;
+        (*own)[static_cast<size_t>(kStrains * p + i)] = c;
+      }
+    }
+    for (int p = 0; p < ngp; ++p) {
+      for (int i = 0; i < 3; ++i)
+        (*own)[static_cast<size_t>(kStrains * p + i)] += delta[static_cast<size_t>(p)][static_cast<size_t>(i)] - mean[static_cast<size_t>(i)];
+      T_.block<3, 3>(kStrains * p, 0).setIdentity();
+    }
+    forms = own;
+  }
+  forms_ = forms;
+
+  // Energy: W = ½ Σ_P w_P (T_P s_P + E_P α)ᵀ S (T_P s_P + E_P α) = ½ sᵀK s + sᵀL α + ½ αᵀH α, quadratic
+  // in α: α = −H⁻¹Lᵀ s exactly (no element history), C = K − L H⁻¹ Lᵀ.
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nforms, nforms), L = Eigen::MatrixXd::Zero(nforms, neas),
+                  H = Eigen::MatrixXd::Zero(neas, neas);
+  for (int p = 0; p < ngp; ++p) {
+    const Eigen::MatrixXd T = T_.block(kStrains * p, 0, kStrains, kStrains);
+    const double w = wj_[static_cast<size_t>(p)];
+    K.block(kStrains * p, kStrains * p, kStrains, kStrains) = w * T.transpose() * S * T;
+    if (eas) {
+      const Eigen::MatrixXd E = EasOut_.block(kStrains * p, 0, kStrains, 4);
       L.block(kStrains * p, 0, kStrains, 4) = w * T.transpose() * S * E;
       H += w * E.transpose() * S * E;
     }
   }
-  // W = ½ sᵀK s + sᵀL α + ½ αᵀH α is quadratic in α: α = −H⁻¹Lᵀ s exactly (no element history).
   C_ = K;
   if (eas) {
     Hinv_Lt_ = -H.ldlt().solve(L.transpose());
     C_ += L * Hinv_Lt_;
   }
   S_ = S;
-  wj_ = wj;
 
   // Reference values of the forms.
   Eigen::MatrixXd U0(2 * n_, 3);
   U0.topRows(n_) = X;
   U0.bottomRows(n_) = D0;
-  s0_ = form_values(topology_forms(n_), U0);
+  s0_ = form_values(*forms_, U0);
 
   // Drilling: ω_I = Σ_J x_J·R_I g_IJ (header), g_IJ = ½ (c_J1 P_I2 − c_J2 P_I1), c_Jβ = N_J,α(centre) (A^α·e_β),
   // P_Ik = R_I0ᵀ e_k.
@@ -386,7 +478,7 @@ double ReissnerMindlinShell::elastic_energy(const Eigen::VectorXd& q) const {
   Eigen::MatrixXd U;
   std::array<Eigen::Matrix3d, kMaxNodes> R;
   nodal_vectors(q, U, R);
-  const Eigen::VectorXd e = form_values(topology_forms(n_), U) - s0_;
+  const Eigen::VectorXd e = form_values(*forms_, U) - s0_;
   double W = 0.5 * e.dot(C_ * e);
   for (int I = 0; I < n_; ++I) {
     double w = -drill_w0_[static_cast<size_t>(I)];
@@ -397,7 +489,7 @@ double ReissnerMindlinShell::elastic_energy(const Eigen::VectorXd& q) const {
 }
 
 void ReissnerMindlinShell::elastic_forces(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* Kout) const {
-  const std::vector<Form>& Q = topology_forms(n_);
+  const std::vector<Form>& Q = *forms_;
   const int nf = static_cast<int>(Q.size()), nd = 6 * n_;
   Eigen::MatrixXd U;
   std::array<Eigen::Matrix3d, kMaxNodes> R;
@@ -541,7 +633,7 @@ void ReissnerMindlinShell::output(const LocalState& s, Eigen::VectorXd& values) 
   Eigen::MatrixXd U;
   std::array<Eigen::Matrix3d, kMaxNodes> R;
   nodal_vectors(s.q, U, R);
-  const Eigen::VectorXd e = form_values(topology_forms(n_), U) - s0_;
+  const Eigen::VectorXd e = form_values(*forms_, U) - s0_;
   Eigen::VectorXd alpha;
   if (Hinv_Lt_.size() > 0) alpha = Hinv_Lt_ * e;
   // Area-weighted mean of the resultants over the quadrature points.

@@ -32,6 +32,7 @@
 // has none physically; drilling_inertia_factor × the node's rotary inertia) so that M is regular.
 #include <Eigen/Dense>
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,7 @@ class ReissnerMindlinShell final : public Element {
   ShellSection section_;
   ShellOptions options_;
   std::array<Eigen::Vector3d, kMaxNodes> dbar_;   // D̄_I = R_I0ᵀ D_I
+  std::shared_ptr<const std::vector<Eigen::MatrixXd>> forms_;  // the strain forms Q_k (header)
   Eigen::MatrixXd C_;         // energy matrix on the natural strain forms (EAS condensed)
   Eigen::VectorXd s0_;        // natural strain forms in the reference
   Eigen::MatrixXd T_;         // per quadrature point (stacked 8 × 8): natural → Cartesian strains
