@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <random>
 #include <set>
@@ -545,5 +546,37 @@ TEST(ReissnerMindlinShell, CantileverPlateFrequenciesMatchLeissa) {
     std::printf("[ modes    ] mode %d: lambda %.4f (Leissa %.3f), rel. error %.2e\n", k + 1, lambda, leissa[k],
                 lambda / leissa[k] - 1);
     EXPECT_NEAR(lambda / leissa[k], 1.0, 0.01);
+  }
+}
+
+// Cost per element evaluation, printed for docs/theory/shell.md (a measurement, not a timed test:
+// nothing is compared with a bound). Thread CPU time, best of 5 rounds.
+TEST(ShellCost, PrintsCostPerElementEvaluation) {
+  auto now = [] {
+    timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  };
+  std::mt19937 rng(17);
+  for (int n : {4, 3}) {
+    const Sample s = sample(n, rng);
+    const ReissnerMindlinShell shell("s", s.nodes, test_section(), s.ref, s.dirs, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, -9.81));
+    LocalState st;
+    st.q = deformed(s, rng, 0.2);
+    st.v = Eigen::VectorXd::Random(6 * n);
+    st.qdd = Eigen::VectorXd::Random(6 * n);
+    for (bool tangent : {false, true}) {
+      double best = 1e300;
+      for (int round = 0; round < 5; ++round) {
+        const double t0 = now();
+        for (int i = 0; i < 200; ++i) {
+          LocalResidual out;
+          out.reset(6 * n, tangent);
+          shell.evaluate(st, out, tangent);
+        }
+        best = std::min(best, (now() - t0) / 200 * 1e6);
+      }
+      std::printf("[ cost     ] %s %s: %.1f us per evaluation\n", shell.type(), tangent ? "r, K, C, M" : "r", best);
+    }
   }
 }
