@@ -124,7 +124,8 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       {"spherical", SpatialJointType::Spherical}, {"universal", SpatialJointType::Universal},
       {"revolute", SpatialJointType::Revolute},   {"cylindrical", SpatialJointType::Cylindrical},
       {"prismatic", SpatialJointType::Prismatic}, {"planar", SpatialJointType::Planar},
-      {"fixed", SpatialJointType::Fixed}};
+      {"fixed", SpatialJointType::Fixed},         {"point_on_line", SpatialJointType::PointOnLine},
+      {"point_on_plane", SpatialJointType::PointOnPlane}};
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node j = list[i];
     std::string path;
@@ -134,7 +135,7 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
     const auto it = types.find(tname);
     if (it == types.end())
       rd.fail(j["type"], path + ".type",
-              "unknown joint type '" + tname + "' (expected spherical, universal, revolute, cylindrical, prismatic, planar, fixed)");
+              "unknown joint type '" + tname + "' (expected spherical, universal, revolute, cylindrical, prismatic, planar, fixed, point_on_line, point_on_plane)");
     const SpatialJointType type = it->second;
     std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2"};
     const bool has_axis = type != SpatialJointType::Spherical && type != SpatialJointType::Fixed;

@@ -13,6 +13,8 @@ const char* to_string(SpatialJointType t) {
     case SpatialJointType::Prismatic: return "prismatic";
     case SpatialJointType::Planar: return "planar";
     case SpatialJointType::Fixed: return "fixed";
+    case SpatialJointType::PointOnLine: return "point_on_line";
+    case SpatialJointType::PointOnPlane: return "point_on_plane";
   }
   return "?";
 }
@@ -26,6 +28,8 @@ int equations_of(SpatialJointType t) {
     case SpatialJointType::Prismatic: return 5;
     case SpatialJointType::Planar: return 3;
     case SpatialJointType::Fixed: return 6;
+    case SpatialJointType::PointOnLine: return 2;
+    case SpatialJointType::PointOnPlane: return 1;
   }
   return 0;
 }
@@ -86,6 +90,13 @@ void SpatialJoint::operator()(const Pose<S>* frames, const S& t, KernelVector<S>
       put(a2.dot(b3));
       put(a3.dot(b1));
       put(a1.dot(b2));
+      break;
+    case SpatialJointType::PointOnLine:
+      put(a1.dot(d));
+      put(a2.dot(d));
+      break;
+    case SpatialJointType::PointOnPlane:
+      put(a3.dot(d));
       break;
   }
   if (angle_) {

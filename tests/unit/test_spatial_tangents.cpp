@@ -122,7 +122,8 @@ const TimeFunctionPtr kDisplacement = make_sine(0.35, 0.5, -0.2, 0.1);  // m
 
 const std::vector<SpatialJointType> kTypes = {
     SpatialJointType::Spherical, SpatialJointType::Universal, SpatialJointType::Revolute, SpatialJointType::Cylindrical,
-    SpatialJointType::Prismatic, SpatialJointType::Planar,    SpatialJointType::Fixed};
+    SpatialJointType::Prismatic, SpatialJointType::Planar,    SpatialJointType::Fixed,
+    SpatialJointType::PointOnLine, SpatialJointType::PointOnPlane};
 
 struct JointCase {
   std::string label;
@@ -217,6 +218,16 @@ Motion allowed_motion(const JointCase& c, const Eigen::VectorXd& p, double t) {
     }
     case SpatialJointType::Fixed:
       break;
+    case SpatialJointType::PointOnLine: {  // any rotation, any slide along a3
+      m.R = rot(Eigen::Vector3d(next(), next(), next()));
+      m.p = Eigen::Vector3d(0, 0, next());
+      break;
+    }
+    case SpatialJointType::PointOnPlane: {  // any rotation, any position in the plane ⊥ a3
+      m.R = rot(Eigen::Vector3d(next(), next(), next()));
+      m.p = Eigen::Vector3d(next(), next(), 0);
+      break;
+    }
   }
   EXPECT_EQ(k, p.size()) << c.label << ": free parameters of the allowed motion";
   return m;
@@ -289,7 +300,7 @@ TEST(SpatialJoint, EquationCountsAreThoseOfTheHeaderTablePlusOnePerDriver) {
   const std::vector<std::pair<SpatialJointType, int>> table = {
       {SpatialJointType::Spherical, 3},   {SpatialJointType::Universal, 4}, {SpatialJointType::Revolute, 5},
       {SpatialJointType::Cylindrical, 4}, {SpatialJointType::Prismatic, 5}, {SpatialJointType::Planar, 3},
-      {SpatialJointType::Fixed, 6}};
+      {SpatialJointType::Fixed, 6},       {SpatialJointType::PointOnLine, 2}, {SpatialJointType::PointOnPlane, 1}};
   for (const auto& [type, m] : table) {
     EXPECT_EQ(equations_of(type), m) << to_string(type);
     EXPECT_EQ(make_joint(type, 2, marker(0, kPosA, kRotA), marker(1, kPosB, kRotB), false, false)->size(), m);
@@ -378,7 +389,8 @@ TEST(SpatialJoint, EachJointAllowsExactlyTheElementaryMotionsOfItsName) {
   // axis of A: Φ stays 0 exactly for the motions the joint's name allows, and not otherwise.
   //   spherical: rotations; universal: rotations about a1 and a2 (= b2); revolute: rotation about a3;
   //   cylindrical: rotation about and translation along a3; prismatic: translation along a3;
-  //   planar: translations along a1, a2 and rotation about a3; fixed: none.
+  //   planar: translations along a1, a2 and rotation about a3; fixed: none; point_on_line: rotations
+  //   and translation along a3; point_on_plane: rotations and translations along a1, a2.
   // A driver removes its motion (rotation about a3, translation along a3).
   const auto allowed = [](const JointCase& c, bool rotation, int axis) {
     switch (c.joint->joint_type()) {
@@ -396,6 +408,10 @@ TEST(SpatialJoint, EachJointAllowsExactlyTheElementaryMotionsOfItsName) {
         return rotation ? axis == 2 : axis < 2;
       case SpatialJointType::Fixed:
         return false;
+      case SpatialJointType::PointOnLine:
+        return rotation || axis == 2;
+      case SpatialJointType::PointOnPlane:
+        return rotation || axis < 2;
     }
     return false;
   };

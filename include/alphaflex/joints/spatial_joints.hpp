@@ -12,6 +12,9 @@
 //   prismatic    cylindrical and a1·b2 = 0                                  5 (axis a3)
 //   planar       a3·d = 0,  a3·b1 = 0, a3·b2 = 0                            3 (plane ⊥ a3)
 //   fixed        p_B − p_A = 0,  a2·b3 = 0, a3·b1 = 0, a1·b2 = 0            6 (clamp, rigid link)
+//   point_on_line   a1·d = 0, a2·d = 0                                      2 (B's point on A's axis a3)
+//   point_on_plane  a3·d = 0                                                1 (B's point in the plane ⊥ a3;
+//                   with planar, the supports and symmetry conditions of shells and plates)
 // Drivers (prescribed motion as a time function) add to a revolute or cylindrical joint the angle
 // ϕ of node 1's marker relative to node 2's about the axis, a1·(cos φ(t) b2 − sin φ(t) b1) =
 // sin(ϕ − φ(t)) = 0, and to a prismatic or cylindrical joint the translation of node 1's marker
@@ -46,7 +49,7 @@ struct SpatialMarker {
   }
 };
 
-enum class SpatialJointType { Spherical, Universal, Revolute, Cylindrical, Prismatic, Planar, Fixed };
+enum class SpatialJointType { Spherical, Universal, Revolute, Cylindrical, Prismatic, Planar, Fixed, PointOnLine, PointOnPlane };
 const char* to_string(SpatialJointType t);
 /// Number of equations of a joint type without drivers.
 int equations_of(SpatialJointType t);
