@@ -1,0 +1,150 @@
+#!/usr/bin/python3
+"""Shell benchmarks of issue 5 (Sze, Liu & Lo 2004) from alphaflex's own output: charts and the page.
+
+    /usr/bin/python3 scripts/shell_benchmarks.py [--exe build/alphaflex] [--quick]
+
+Runs inputs/shell_cantilever_shear.yaml, shell_rollup.yaml, slit_annular_plate.yaml and
+hemisphere_hole.yaml on the paper's meshes (and, for the convergence columns, on meshes twice as
+fine), compares their load-deflection paths with the paper's ABAQUS S4R tables
+(tests/reference/sze_*.csv) and the roll-up with the exact circle, and writes
+docs/figures/shell_sze.png and docs/benchmarks/shells.md. --quick skips the finer meshes.
+"""
+import argparse
+import os
+import re
+import subprocess
+import tempfile
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REF = os.path.join(ROOT, "tests", "reference")
+FIG = os.path.join(ROOT, "docs", "figures")
+OUT = os.path.join(tempfile.gettempdir(), "alphaflex_shell_benchmarks")
+
+# scene, reference table, sensors, paper's mesh parameters, the same twice as fine, title
+CASES = [
+    ("shell_cantilever_shear", "sze_cantilever_shear.csv", ["tip_u", "tip_w"], {}, {"mesh.parameters.nx": 32, "mesh.parameters.ny": 2},
+     "cantilever strip, end shear (16 x 1)"),
+    ("shell_rollup", "sze_rollup.csv", ["tip_u", "tip_w"], {}, {"mesh.parameters.nx": 32, "mesh.parameters.ny": 2},
+     "strip rolled up by an end moment (16 x 1)"),
+    ("slit_annular_plate", "sze_slit_annular_plate.csv", ["wA", "wB"], {}, {"mesh.parameters.nr": 20, "mesh.parameters.nt": 160},
+     "slit annular plate, lifting line force (10 x 80)"),
+    ("hemisphere_hole", "sze_hemisphere.csv", ["uA", "vB"], {}, {"mesh.parameters.n": 32},
+     "hemisphere with 18 deg hole, point loads (16 x 16 quarter)"),
+]
+
+
+def read_ref(name):
+    return np.genfromtxt(os.path.join(REF, name), delimiter=",", names=True, comments="#")
+
+
+def run(exe, scene, sets, tag):
+    """Run a scene; return (sensor table, summary text)."""
+    out = os.path.join(OUT, f"{scene}_{tag}")
+    cmd = [exe, "run", os.path.join(ROOT, "inputs", scene + ".yaml"), "-o", out]
+    for k, v in sets.items():
+        cmd += ["--set", f"{k}={v}"]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    return np.genfromtxt(os.path.join(out, scene + ".csv"), delimiter=",", names=True), p.stdout
+
+
+def stats(text):
+    m = re.search(r"load steps\s+(\d+)", text)
+    n = re.search(r"Newton iterations\s+total (\d+), mean ([\d.eE+-]+) per step, max (\d+)", text)
+    u = re.search(r"unknowns\s+(\d+)", text)
+    w = re.search(r"wall time\s+([\d.eE+-]+) s", text)
+    a = re.search(r"^\s+assembly\s+([\d.]+) s", text, re.M)
+    return {"steps": int(m.group(1)), "newton": int(n.group(1)), "newton_mean": float(n.group(2)),
+            "newton_max": int(n.group(3)), "unknowns": int(u.group(1)), "wall": float(w.group(1)),
+            "assembly": float(a.group(1)) if a else float("nan")}
+
+
+def errors(data, ref, sensor):
+    """At the table's load levels: max |ours − ref| / max |ref| over the path, and the final relative error."""
+    ours = np.interp(ref["load_fraction"], data["t"], data[sensor])
+    scale = np.max(np.abs(ref[sensor]))
+    return np.max(np.abs(ours - ref[sensor])) / scale, (ours[-1] - ref[sensor][-1]) / abs(ref[sensor][-1]) if ref[sensor][-1] != 0 else float("nan")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "alphaflex"))
+    ap.add_argument("--quick", action="store_true", help="skip the finer meshes")
+    args = ap.parse_args()
+    exe = os.path.abspath(args.exe)
+    os.makedirs(FIG, exist_ok=True)
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
+    rows, conv = [], []
+    for ax, (scene, refname, sensors, sets, fine, title) in zip(axes.flat, CASES):
+        ref = read_ref(refname)
+        data, text = run(exe, scene, sets, "paper")
+        st = stats(text)
+        fine_data = None
+        if not args.quick:
+            fine_data, fine_text = run(exe, scene, fine, "fine")
+            fst = stats(fine_text)
+        for k, s in enumerate(sensors):
+            c = f"C{k}"
+            ax.plot(np.abs(ref[s]), ref["load_fraction"], "o", color=c, mfc="none", label=f"|{s}| Sze et al. (S4R)")
+            ax.plot(np.abs(data[s]), data["t"], "-", color=c, label=f"|{s}| alphaflex")
+            if fine_data is not None:
+                ax.plot(np.abs(fine_data[s]), fine_data["t"], ":", color=c, label=f"|{s}| alphaflex, mesh x2")
+            if scene == "shell_rollup":
+                ax.plot(np.abs(ref[s + "_exact"]), ref["load_fraction"], "x", color=c, ms=4, label=f"|{s}| exact")
+            path_err, final_err = errors(data, ref, s)
+            row = {"scene": scene, "sensor": s, "path": path_err, "final": final_err,
+                   "ours": data[s][-1], "ref": ref[s][-1], **st}
+            if fine_data is not None:
+                row["path_fine"], row["final_fine"] = errors(fine_data, ref, s)
+                row["unknowns_fine"] = fst["unknowns"]
+                row["newton_fine"] = fst["newton_mean"]
+            if scene == "shell_rollup":
+                exact = {"load_fraction": ref["load_fraction"], s: ref[s + "_exact"]}
+                row["path_exact"], _ = errors(data, exact, s)
+                if fine_data is not None:
+                    row["path_exact_fine"], _ = errors(fine_data, exact, s)
+            rows.append(row)
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel("displacement magnitude (m)")
+        ax.set_ylabel("load fraction")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(FIG, "shell_sze.png"), dpi=110)
+    write_page(rows, args.quick)
+
+
+def write_page(rows, quick):
+    path = os.path.join(ROOT, "docs", "benchmarks", "shells.md")
+    with open(path, "w") as f:
+        f.write("# Shell benchmarks (Sze, Liu & Lo 2004)\n\n")
+        f.write("Made by `/usr/bin/python3 scripts/shell_benchmarks.py` (this page and "
+                "`docs/figures/shell_sze.png`). Reference: the paper's ABAQUS S4R load-deflection tables on the "
+                "paper's meshes, `tests/reference/sze_*.csv` (sources in their headers); the roll-up also against "
+                "the exact circle. Static analysis, load stepping at the table's load levels, Newton to the "
+                "default tolerance. Error over the path: max |ours - ref| at the table's load levels / max |ref|; "
+                "final: relative error at the full load.\n\n")
+        f.write("![load-deflection paths](../figures/shell_sze.png)\n\n")
+        f.write("| scene | sensor | ours at P_max (m) | S4R (m) | final rel. error | path error |"
+                + ("" if quick else " path error, mesh x2 |") + " unknowns | load steps | Newton its/step (max) | wall (s) |\n")
+        f.write("|---|---|---|---|---|---|" + ("" if quick else "---|") + "---|---|---|---|\n")
+        for r in rows:
+            f.write(f"| {r['scene']} | {r['sensor']} | {r['ours']:.4f} | {r['ref']:.3f} | {r['final']:+.2%} | {r['path']:.2%} |"
+                    + ("" if quick else f" {r['path_fine']:.2%} |")
+                    + f" {r['unknowns']} | {r['steps']} | {r['newton_mean']:.1f} ({r['newton_max']}) | {r['wall']:.2f} |\n")
+        roll = [r for r in rows if "path_exact" in r]
+        if roll:
+            f.write("\nRoll-up against the exact circle (path error / max |exact|): "
+                    + ", ".join(f"{r['sensor']} {r['path_exact']:.2%}" + ("" if quick else f" (mesh x2: {r['path_exact_fine']:.2%})")
+                                for r in roll) + ".\n")
+    print("wrote", path)
+
+
+if __name__ == "__main__":
+    main()
