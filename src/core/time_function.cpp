@@ -7,6 +7,18 @@
 namespace alphaflex {
 namespace {
 
+class Scaled final : public TimeFunction {
+ public:
+  Scaled(TimeFunctionPtr f, double c) : f_(std::move(f)), c_(c) {}
+  double value(double t) const override { return c_ * f_->value(t); }
+  double derivative(double t) const override { return c_ * f_->derivative(t); }
+  double second_derivative(double t) const override { return c_ * f_->second_derivative(t); }
+
+ private:
+  TimeFunctionPtr f_;
+  double c_;
+};
+
 class Constant final : public TimeFunction {
  public:
   explicit Constant(double c) : c_(c) {}
@@ -150,6 +162,7 @@ TimeFunctionPtr make_spin_up(double omega, double T) {
 }
 TimeFunctionPtr make_linear(double rate, double offset) { return std::make_shared<Linear>(rate, offset); }
 TimeFunctionPtr make_sine(double a, double f, double p, double o) { return std::make_shared<Sine>(a, f, p, o); }
+TimeFunctionPtr make_scaled(TimeFunctionPtr f, double c) { return std::make_shared<Scaled>(std::move(f), c); }
 TimeFunctionPtr make_table(std::vector<double> t, std::vector<double> v) {
   if (t.size() < 2 || t.size() != v.size())
     throw std::invalid_argument("table needs t and values of equal length >= 2");

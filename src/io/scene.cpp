@@ -414,7 +414,7 @@ Scene build(const YAML::Node& root, const std::string& label,
   scene.file = label;
   if (!root.IsMap()) rd.fail(root, "(top level)", "expected a map of sections (solver, bodies, joints, ...)");
   rd.keys(root, "(top level)", {"name", "description", "parameters", "dimension", "gravity", "load", "solver", "output",
-                                "mesh", "beams", "bodies", "joints", "forces", "sensors"});
+                                "mesh", "beams", "shells", "bodies", "joints", "forces", "sensors"});
   rd.read_parameters(root["parameters"]);
   scene.name = root["name"] ? rd.text(root["name"], "name")
                             : std::filesystem::path(label).stem().string();
@@ -450,9 +450,9 @@ Scene build(const YAML::Node& root, const std::string& label,
     read_sensors(rd, sb, root["sensors"], *scene.model);
   } else {
     const Eigen::Vector3d gravity = rd.vec3(root, "gravity", "", Eigen::Vector3d::Zero());
-    scene_detail::read_mesh_and_beams(rd, root, *scene.model, gravity);
+    scene_detail::read_mesh_and_beams(rd, sb, root, *scene.model, gravity);
     scene_detail::read_spatial_bodies(rd, sb, root["bodies"], *scene.model, gravity);
-    if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies and no beams");
+    if (scene.model->nodes().empty()) rd.fail(root, "bodies", "the scene has no bodies, beams or shells");
     scene_detail::read_spatial_joints(rd, sb, root["joints"], *scene.model);
     scene_detail::read_spatial_forces(rd, sb, root["forces"], *scene.model);
     scene_detail::read_spatial_sensors(rd, sb, root["sensors"], *scene.model);

@@ -1,11 +1,14 @@
-// Beams from gmsh meshes (`mesh`, `beams`), spatial scenes only: physical line groups become beam
-// blocks (two-node geometrically exact beams), their mesh nodes become spatial frame nodes, and
-// named mesh points become nodes that joints, loads and sensors refer to by name.
+// Beams and shells from gmsh meshes (`mesh`, `beams`, `shells`): physical line groups become beam
+// blocks (two-node geometrically exact beams), physical surface groups shell blocks (MITC4/MITC3
+// Reissner–Mindlin shells), their mesh nodes become spatial frame nodes shared where beams and
+// shells meet, named mesh points become nodes that joints, loads and sensors refer to by name, and
+// every physical group is kept (as model nodes) for joints and loads given on a group.
 #include <filesystem>
 
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
 #include "alphaflex/elements/planar_beam.hpp"
+#include "alphaflex/elements/shell.hpp"
 #include "alphaflex/mesh/gmsh_reader.hpp"
 #include "alphaflex/model/model.hpp"
 #include "scene_reader.hpp"
@@ -92,24 +95,188 @@ void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, 
   for (const auto& [pname, id] : mesh.named_points)
     if (node_of[static_cast<size_t>(id)] < 0)
       rd.fail(mn["file"], "mesh.file",
-              "named point '" + pname + "' is on none of the beams' groups (an unconnected node); put it on a beam's curve or remove it");
+              "named point '" + pname + "' is on none of the beams' or shells' groups (an unconnected node); put it on a beam's curve or a shell's surface, or remove it");
+}
+
+
+/// The shell section of a `shells` entry: `thickness` and `material: {E, nu, rho}`, or a laminate
+/// `section: {A, B, D, As, thickness, mass, rotary}` (matrices as nested lists).
+ShellSection read_shell_section(Reader& rd, const YAML::Node& s, const std::string& path) {
+  auto matrix = [&](const YAML::Node& n, const std::string& key, int size, const char* unit) {
+    Eigen::MatrixXd M(size, size);
+    if (!n || !n.IsSequence() || static_cast<int>(n.size()) != size)
+      rd.fail(n ? n : s, key, "expected a " + std::to_string(size) + "x" + std::to_string(size) + " matrix as a list of rows (" + unit + ")");
+    for (int r = 0; r < size; ++r) {
+      const YAML::Node row = n[static_cast<size_t>(r)];
+      if (!row.IsSequence() || static_cast<int>(row.size()) != size)
+        rd.fail(row, key, "row " + std::to_string(r + 1) + ": expected " + std::to_string(size) + " numbers");
+      for (int c = 0; c < size; ++c) M(r, c) = rd.number(row[static_cast<size_t>(c)], key + "[" + std::to_string(r) + "][" + std::to_string(c) + "]");
+    }
+    return M;
+  };
+  try {
+    if (const YAML::Node sec = s["section"]) {
+      if (s["material"] || s["thickness"])
+        rd.fail(sec, path + ".section", "give either thickness and material, or a laminate section (with its own thickness)");
+      const std::string key = path + ".section";
+      if (!sec.IsMap()) rd.fail(sec, key, "expected a map {A, B, D, As, thickness, mass, rotary}");
+      rd.keys(sec, key, {"A", "B", "D", "As", "thickness", "mass", "rotary"});
+      const Eigen::Matrix3d A = matrix(sec["A"], key + ".A", 3, "N/m");
+      const Eigen::Matrix3d B = sec["B"] ? Eigen::Matrix3d(matrix(sec["B"], key + ".B", 3, "N")) : Eigen::Matrix3d::Zero();
+      const Eigen::Matrix3d D = matrix(sec["D"], key + ".D", 3, "N m");
+      const Eigen::Matrix2d As = matrix(sec["As"], key + ".As", 2, "N/m");
+      const double t = rd.positive(rd.need(sec, "thickness", key), key + ".thickness", "thickness (m)");
+      const double mass = rd.number(rd.need(sec, "mass", key), key + ".mass");
+      const double rotary = rd.number(rd.need(sec, "rotary", key), key + ".rotary");
+      return ShellSection::laminate(A, B, D, As, t, mass, rotary);
+    }
+    const double t = rd.positive(rd.need(s, "thickness", path), path + ".thickness", "thickness (m)");
+    const YAML::Node m = rd.need(s, "material", path);
+    if (!m.IsMap()) rd.fail(m, path + ".material", "expected a map {E, nu, rho}");
+    rd.keys(m, path + ".material", {"E", "nu", "rho"});
+    const double E = rd.positive(rd.need(m, "E", path + ".material"), path + ".material.E", "Young's modulus (Pa)");
+    const double nu = rd.number(rd.need(m, "nu", path + ".material"), path + ".material.nu");
+    const double rho = rd.number(rd.need(m, "rho", path + ".material"), path + ".material.rho");
+    return ShellSection::isotropic(E, nu, rho, t);
+  } catch (const std::invalid_argument& e) {
+    rd.fail(s["section"] ? s["section"] : s["material"] ? s["material"] : s, path, e.what());
+  }
+}
+
+/// `shells`: one block of ReissnerMindlinShell elements per physical surface group.
+void read_shells(Reader& rd, const YAML::Node& sl, const MeshData& mesh, Model& model, const Eigen::Vector3d& gravity,
+                 std::vector<int>& node_of, const std::map<int, std::string>& point_name,
+                 std::set<std::string>& groups_used) {
+  constexpr double kPi = 3.14159265358979323846;
+  if (!sl.IsSequence() || sl.size() == 0) rd.fail(sl, "shells", "expected a list of shells");
+  std::set<std::string> names;
+  for (size_t i = 0; i < sl.size(); ++i) {
+    const YAML::Node s = sl[i];
+    std::string path = "shells[" + std::to_string(i) + "]";
+    if (!s.IsMap()) rd.fail(s, path, "expected a map with name, group, thickness, material");
+    rd.keys(s, path, {"name", "group", "thickness", "material", "section", "material_axis", "drilling", "kink_angle"});
+    const std::string name = rd.text(rd.need(s, "name", path), path + ".name");
+    path = "shells[" + name + "]";
+    if (!names.insert(name).second) rd.fail(s["name"], path + ".name", "a shell named '" + name + "' exists already");
+    const std::string group = rd.text(rd.need(s, "group", path), path + ".group");
+    const MeshSurfaceBlock* block = mesh.find_surface_block(group);
+    if (!block) {
+      std::string known;
+      for (const auto& b : mesh.surface_blocks) known += (known.empty() ? "" : ", ") + b.name;
+      rd.fail(s["group"], path + ".group", "mesh '" + mesh.file + "' has no physical surface group '" + group +
+                                               "' (its surface groups: " + (known.empty() ? "none" : known) + ")");
+    }
+    if (!groups_used.insert(group).second) rd.fail(s["group"], path + ".group", "group '" + group + "' is used by another beam or shell already");
+    const ShellSection section = read_shell_section(rd, s, path);
+    ShellOptions options;
+    if (s["drilling"]) options.drilling_factor = rd.positive(s["drilling"], path + ".drilling", "drilling stiffness factor (of G t)");
+    const double kink = s["kink_angle"] ? rd.positive(s["kink_angle"], path + ".kink_angle", "angle (degrees)") : 20.0;
+    const bool axis_given = static_cast<bool>(s["material_axis"]);
+    const Eigen::Vector3d axis = axis_given ? rd.direction(s["material_axis"], path + ".material_axis") : Eigen::Vector3d::UnitX();
+    std::vector<std::vector<Eigen::Vector3d>> dirs;
+    try {
+      dirs = shell_directors(mesh.points, block->elements, kink * kPi / 180.0);
+    } catch (const std::invalid_argument& e) {
+      rd.fail(s["group"], path + ".group", e.what());
+    }
+    for (size_t e = 0; e < block->elements.size(); ++e) {
+      std::vector<int> nodes;
+      for (int m : block->elements[e]) {
+        if (node_of[static_cast<size_t>(m)] < 0) {
+          Node nd;
+          nd.kind = NodeKind::Frame3D;
+          const auto pn = point_name.find(m);
+          nd.name = pn != point_name.end() ? pn->second : name + ":" + std::to_string(mesh.node_tags[static_cast<size_t>(m)]);
+          if (model.find_node(nd.name) >= 0) rd.fail(s, path, "mesh point '" + nd.name + "' has the name of another node or body");
+          nd.q0.resize(7);
+          store_pose(mesh.points[static_cast<size_t>(m)], Eigen::Matrix3d::Identity(), nd.q0.data());
+          nd.v0 = Eigen::VectorXd::Zero(6);
+          node_of[static_cast<size_t>(m)] = model.add_node(nd);
+        }
+        nodes.push_back(node_of[static_cast<size_t>(m)]);
+      }
+      std::vector<Pose<double>> ref;
+      for (int n : nodes) ref.push_back(pose_of(model.node(n).q0.data()));
+      auto make = [&](const Eigen::Vector3d& a) {
+        return std::make_unique<ReissnerMindlinShell>(name + "[" + std::to_string(e) + "]", nodes, section, ref, dirs[e], a,
+                                                      gravity, options);
+      };
+      try {
+        std::unique_ptr<ReissnerMindlinShell> el;
+        try {
+          el = make(axis);
+        } catch (const std::invalid_argument&) {
+          // The default axis (x) along an element's normal: y, then z, unless the user gave one.
+          if (axis_given) throw;
+          try {
+            el = make(Eigen::Vector3d::UnitY());
+          } catch (const std::invalid_argument&) {
+            el = make(Eigen::Vector3d::UnitZ());
+          }
+        }
+        model.add_element(std::move(el));
+      } catch (const std::invalid_argument& ex) {
+        std::ostringstream os;
+        os << "element " << block->element_tags[e] << " of group '" << group << "': " << ex.what();
+        rd.fail(axis_given && std::string(ex.what()).find("material axis") != std::string::npos ? s["material_axis"] : s["group"],
+                path + (axis_given && std::string(ex.what()).find("material axis") != std::string::npos ? ".material_axis" : ".group"),
+                os.str());
+      }
+    }
+  }
+}
+
+/// Every physical group of the mesh in terms of model nodes (−1 for nodes nothing uses).
+void keep_groups(SceneBuilder& sb, const MeshData& mesh, const std::vector<int>& node_of) {
+  auto add_nodes = [&](MeshGroup& g, const std::vector<int>& mesh_nodes) {
+    std::vector<int> el;
+    for (int m : mesh_nodes) {
+      const int n = node_of[static_cast<size_t>(m)];
+      el.push_back(n);
+      if (std::find(g.nodes.begin(), g.nodes.end(), n) == g.nodes.end() || n < 0) {
+        g.nodes.push_back(n);
+        g.points.push_back(mesh.points[static_cast<size_t>(m)]);
+      }
+    }
+    return el;
+  };
+  for (const auto& b : mesh.line_blocks) {
+    MeshGroup& g = sb.mesh_groups[b.name];
+    g.dim = 1;
+    for (const auto& seg : b.elements) g.elements.push_back(add_nodes(g, {seg[0], seg[1]}));
+  }
+  for (const auto& b : mesh.surface_blocks) {
+    MeshGroup& g = sb.mesh_groups[b.name];
+    g.dim = 2;
+    for (const auto& el : b.elements) g.elements.push_back(add_nodes(g, el));
+    g.shells = true;
+    for (const auto& el : g.elements)
+      for (int n : el) g.shells = g.shells && n >= 0;
+  }
+  for (const auto& [name, m] : mesh.named_points) {
+    MeshGroup& g = sb.mesh_groups[name];
+    g.dim = 0;
+    add_nodes(g, {m});
+  }
 }
 
 }  // namespace
 
-void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity) {
-  const YAML::Node mn = root["mesh"], bl = root["beams"];
-  if (!mn && !bl) return;
-  if (!mn) rd.fail(bl, "beams", "beams need a `mesh` (a .geo or .msh file with their physical groups)");
-  if (!bl) rd.fail(mn, "mesh", "no `beams` use this mesh (give beams: [{name, group, section, orientation}])");
+void read_mesh_and_beams(Reader& rd, SceneBuilder& sb, const YAML::Node& root, Model& model,
+                         const Eigen::Vector3d& gravity) {
+  const YAML::Node mn = root["mesh"], bl = root["beams"], sl = root["shells"];
+  if (!mn && !bl && !sl) return;
+  if (!mn) rd.fail(bl ? bl : sl, bl ? "beams" : "shells", "beams and shells need a `mesh` (a .geo or .msh file with their physical groups)");
+  if (!bl && !sl)
+    rd.fail(mn, "mesh", "no `beams` or `shells` use this mesh (give beams: [{name, group, section, orientation}] or shells: [{name, group, thickness, material}])");
   const MeshData mesh = load_mesh(rd, mn);
-  const YAML::Node fn = mn["file"];
-  if (!bl.IsSequence() || bl.size() == 0) rd.fail(bl, "beams", "expected a list of beams");
+  sb.mesh_file = mesh.file;
+  if (bl && (!bl.IsSequence() || bl.size() == 0)) rd.fail(bl, "beams", "expected a list of beams");
   std::vector<int> node_of(mesh.points.size(), -1);  // mesh node → model node
   std::map<int, std::string> point_name;
   for (const auto& [name, id] : mesh.named_points) point_name[id] = name;
   std::set<std::string> beam_names, groups_used;
-  for (size_t i = 0; i < bl.size(); ++i) {
+  for (size_t i = 0; bl && i < bl.size(); ++i) {
     const YAML::Node b = bl[i];
     std::string path_b = "beams[" + std::to_string(i) + "]";
     if (!b.IsMap()) rd.fail(b, path_b, "expected a map with name, group, section, orientation");
@@ -160,7 +327,9 @@ void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const
       }
     }
   }
+  if (sl) read_shells(rd, sl, mesh, model, gravity, node_of, point_name, groups_used);
   check_named_points(rd, mn, mesh, node_of);
+  keep_groups(sb, mesh, node_of);
 }
 
 void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector2d& gravity) {

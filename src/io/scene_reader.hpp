@@ -248,10 +248,43 @@ struct NamedMarker {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
 };
 
+/// A physical group of the scene's mesh in terms of model nodes (joints and loads on groups).
+struct MeshGroup {
+  int dim = 0;                              ///< 0 point, 1 curve, 2 surface
+  std::vector<int> nodes;                   ///< model nodes (−1: a mesh node no beam or shell uses), first-use order
+  std::vector<std::vector<int>> elements;   ///< model node lists: segments (dim 1), shell elements (dim 2)
+  std::vector<Eigen::Vector3d> points;      ///< reference position of each of `nodes`
+  bool shells = false;                      ///< a surface group that `shells` use
+};
+
 class SceneBuilder {
  public:
   SceneBuilder(Reader& rd, Model& model) : rd_(rd), model_(model) {}
   std::map<std::string, NamedMarker> markers;  ///< 3D body markers by name
+  std::string mesh_file;                       ///< the scene's mesh, for messages
+  std::map<std::string, MeshGroup> mesh_groups;  ///< the mesh's physical groups by name
+
+  /// The mesh group named by `n`, all of whose nodes are model nodes; clear errors otherwise.
+  const MeshGroup& mesh_group(const YAML::Node& n, const std::string& key, int dim = -1) {
+    const std::string name = rd_.text(n, key);
+    if (mesh_groups.empty()) rd_.fail(n, key, "the scene has no `mesh` whose groups could be named");
+    const auto it = mesh_groups.find(name);
+    const char* what[] = {"point", "curve", "surface"};
+    if (it == mesh_groups.end() || (dim >= 0 && it->second.dim != dim)) {
+      std::string known;
+      for (const auto& [g, mg] : mesh_groups)
+        if (dim < 0 || mg.dim == dim) known += (known.empty() ? "" : ", ") + g;
+      const std::string kind = dim >= 0 ? std::string(what[dim]) + " " : "";
+      rd_.fail(n, key, "mesh '" + mesh_file + "' has no physical " + kind + "group '" + name + "' (its " + kind +
+                           "groups: " + (known.empty() ? "none" : known) + ")" +
+                           (it != mesh_groups.end() ? " ('" + name + "' is a " + what[it->second.dim] + " group)" : ""));
+    }
+    for (int nd : it->second.nodes)
+      if (nd < 0)
+        rd_.fail(n, key, "group '" + name + "' of mesh '" + mesh_file +
+                             "' has nodes that are on no beam or shell (nothing holds them); name a group on the beams or shells");
+    return it->second;
+  }
 
   int body(const YAML::Node& map, const std::string& key, const std::string& path, bool ground_ok) {
     const YAML::Node n = rd_.need(map, key, path);
@@ -308,7 +341,7 @@ namespace alphaflex::scene_detail {
 
 /// Spatial scenes (`dimension: 3`), scene_spatial.cpp.
 void read_spatial_bodies(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity);
-void read_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity);
+void read_mesh_and_beams(Reader& rd, SceneBuilder& sb, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity);
 /// Planar scenes: planar beams (x, y, θ nodes) from a mesh in the x-y plane.
 void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector2d& gravity);
 void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model);

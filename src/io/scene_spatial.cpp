@@ -3,6 +3,7 @@
 #include <set>
 
 #include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/shell.hpp"
 #include "alphaflex/elements/spatial_elements.hpp"
 #include "alphaflex/joints/spatial_joints.hpp"
 #include "alphaflex/model/model.hpp"
@@ -137,7 +138,7 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       rd.fail(j["type"], path + ".type",
               "unknown joint type '" + tname + "' (expected spherical, universal, revolute, cylindrical, prismatic, planar, fixed, point_on_line, point_on_plane)");
     const SpatialJointType type = it->second;
-    std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2"};
+    std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2", "group"};
     const bool has_axis = type != SpatialJointType::Spherical && type != SpatialJointType::Fixed;
     if (has_axis) allowed.insert("axis");
     if (type == SpatialJointType::Universal) allowed.insert("axis2");
@@ -160,9 +161,23 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
     if (mk1 && j["body1"]) rd.fail(j["body1"], path + ".body1", "give either body1 or marker1");
     if (mk2 && j["body2"]) rd.fail(j["body2"], path + ".body2", "give either body2 or marker2");
     if (mk1 && j["location"]) rd.fail(j["location"], path + ".location", "marker1 fixes the location; remove one of them");
-    if (!mk1 && !j["body1"]) rd.fail(j, path + ".body1", "missing (required): body1 or marker1");
-    const int b1 = mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false);
+    // `group`: one joint per node of a mesh group (a clamped or supported edge), named name[k],
+    // each at its node with that node as body1.
+    const MeshGroup* group = nullptr;
+    if (const YAML::Node g = j["group"]) {
+      for (const char* k : {"body1", "marker1", "location"})
+        if (j[k]) rd.fail(j[k], path + "." + k, "give either group (a joint at every node of a mesh group) or " + std::string(k));
+      group = &sb.mesh_group(g, path + ".group");
+    }
+    if (!mk1 && !j["body1"] && !group) rd.fail(j, path + ".body1", "missing (required): body1, marker1 or group");
     const int b2 = mk2 ? mk2->node : (j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1);
+    std::vector<int> firsts;
+    if (group) firsts = group->nodes;
+    else firsts.push_back(mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false));
+    for (size_t k = 0; k < firsts.size(); ++k) {
+    const int b1 = firsts[k];
+    const std::string jname = group ? name + "[" + std::to_string(k) + "]" : name;
+    if (group && model.find_constraint(jname) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + jname + "' exists already");
     if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
     const Pose<double> p1 = initial_pose(model, b1);
     const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)
@@ -220,10 +235,62 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
     const SpatialMarker A = marker_at(model, b1, 0, loc, R);
     const SpatialMarker B = marker_at(model, b2, 1, loc, R);
     try {
-      model.add_constraint(std::make_unique<SpatialJoint>(name, nodes, type, A, B, angle, displacement));
+      model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, type, A, B, angle, displacement));
     } catch (const std::invalid_argument& e) {
       rd.fail(j, path, e.what());
     }
+    }
+  }
+}
+
+
+/// `pressure` on the shell elements of a surface group (ShellPressure per element) and `edge_load`
+/// (force and moment per length) on a curve group, as consistent nodal loads of its linear
+/// segments: each node carries half the reference length of each adjacent segment.
+void read_surface_load(Reader& rd, SceneBuilder& sb, const YAML::Node& f, const std::string& path, const std::string& name,
+                       const std::string& type, Model& model) {
+  if (type == "pressure") {
+    rd.keys(f, path, {"name", "type", "group", "value", "follower"});
+    const MeshGroup& g = sb.mesh_group(rd.need(f, "group", path), path + ".group", 2);
+    if (!g.shells) rd.fail(f["group"], path + ".group", "a pressure acts on shells: no `shells` block uses this surface group");
+    const TimeFunctionPtr p = rd.function(rd.need(f, "value", path), path + ".value");
+    const bool follower = f["follower"] ? rd.flag(f["follower"], path + ".follower") : true;
+    for (size_t e = 0; e < g.elements.size(); ++e) {
+      std::vector<Eigen::Vector3d> X;
+      for (int n : g.elements[e]) X.push_back(initial_pose(model, n).x);
+      model.add_element(std::make_unique<ShellPressure>(name + "[" + std::to_string(e) + "]", g.elements[e], X, p, follower));
+    }
+    return;
+  }
+  rd.keys(f, path, {"name", "type", "group", "force", "moment", "follower"});
+  const MeshGroup& g = sb.mesh_group(rd.need(f, "group", path), path + ".group", 1);
+  if (!f["force"] && !f["moment"]) rd.fail(f, path, "an edge_load needs force (N/m) or moment (N m/m), or both");
+  auto per_length = [&](const char* key, const char* unit) {
+    std::array<TimeFunctionPtr, 3> v;
+    const YAML::Node n = f[key];
+    if (!n) return v;
+    if (!n.IsSequence() || n.size() != 3)
+      rd.fail(n, path + "." + key, std::string("expected [x, y, z], each a number or a time function (") + unit + ")");
+    for (int k = 0; k < 3; ++k) v[static_cast<size_t>(k)] = rd.function(n[k], path + "." + key + "[" + std::to_string(k) + "]");
+    return v;
+  };
+  const std::array<TimeFunctionPtr, 3> force = per_length("force", "N/m"), moment = per_length("moment", "N m/m");
+  const bool follower = f["follower"] ? rd.flag(f["follower"], path + ".follower") : false;
+  std::map<int, double> length;  // node → length it carries
+  for (const auto& seg : g.elements) {
+    const double l = (initial_pose(model, seg[1]).x - initial_pose(model, seg[0]).x).norm();
+    length[seg[0]] += 0.5 * l;
+    length[seg[1]] += 0.5 * l;
+  }
+  for (int n : g.nodes) {
+    auto scaled = [&](const std::array<TimeFunctionPtr, 3>& v) {
+      std::array<TimeFunctionPtr, 3> out;
+      for (size_t k = 0; k < 3; ++k)
+        if (v[k]) out[k] = make_scaled(v[k], length[n]);
+      return out;
+    };
+    model.add_element(std::make_unique<SpatialLoad>(name + "[" + model.node(n).name + "]", n, Eigen::Vector3d::Zero(),
+                                                    scaled(force), scaled(moment), follower));
   }
 }
 
@@ -237,8 +304,12 @@ void read_spatial_forces(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
     const std::string name = rd.item_name(f, "forces", i, "expected a map with name, type, ...", path);
     if (!names.insert(name).second) rd.fail(f["name"], path + ".name", "a force named '" + name + "' exists already");
     const std::string type = rd.text(rd.need(f, "type", path), path + ".type");
+    if (type == "pressure" || type == "edge_load") {
+      read_surface_load(rd, sb, f, path, name, type, model);
+      continue;
+    }
     if (type != "force" && type != "moment")
-      rd.fail(f["type"], path + ".type", "unknown load type '" + type + "' for dimension 3 (expected force, moment)");
+      rd.fail(f["type"], path + ".type", "unknown load type '" + type + "' for dimension 3 (expected force, moment, pressure, edge_load)");
     rd.keys(f, path, type == "force" ? std::set<std::string>{"name", "type", "body", "point", "value", "follower"}
                                      : std::set<std::string>{"name", "type", "body", "value", "follower"});
     const int b = spatial_node(sb, f, "body", path, false);

@@ -39,6 +39,12 @@ const MeshLineBlock* MeshData::find_line_block(const std::string& name) const {
   return nullptr;
 }
 
+const MeshSurfaceBlock* MeshData::find_surface_block(const std::string& name) const {
+  for (const MeshSurfaceBlock& b : surface_blocks)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
 namespace {
 
 // gmsh is one global state: one session at a time in this process.
@@ -46,6 +52,8 @@ std::mutex gmsh_mutex;
 
 constexpr int kLine2 = 1;  // gmsh element type: 2-node line
 constexpr int kLine3 = 8;  // 3-node line (second order): nodes [end, end, mid]
+constexpr int kTriangle3 = 2;
+constexpr int kQuadrangle4 = 3;
 
 std::string number(double v) {
   std::ostringstream s;
@@ -129,7 +137,7 @@ class Reader {
         gmsh::open(path_);
         check_gmsh();
         mesh.parameters = check_parameters();
-        stage_ = "meshing the .geo in 1D";
+        stage_ = "meshing the .geo";
         mesh_geo();
         check_gmsh();
       } else {
@@ -140,7 +148,8 @@ class Reader {
       stage_ = "reading the mesh's physical groups";
       extract(mesh);
       check_gmsh();
-      mesh.warnings = GmshSession::logged("Warning: ");
+      const std::vector<std::string> logged = GmshSession::logged("Warning: ");
+      mesh.warnings.insert(mesh.warnings.begin(), logged.begin(), logged.end());
       return mesh;
     } catch (const InputError&) {
       throw;
@@ -264,7 +273,10 @@ class Reader {
         gmsh::model::mesh::setTransfiniteCurve(tag, options_.elements_per_curve + 1);
     }
     if (options_.element_size > 0) gmsh::option::setNumber("Mesh.MeshSizeMax", options_.element_size);
-    gmsh::model::mesh::generate(1);
+    // In 2D only if there are physical surfaces (shells): beam-only geometries stay 1D.
+    gmsh::vectorpair surfaces;
+    gmsh::model::getPhysicalGroups(surfaces, 2);
+    gmsh::model::mesh::generate(surfaces.empty() ? 1 : 2);
   }
 
   /// With element_size, every curve element (chord between its end nodes) must be no longer.
@@ -306,14 +318,14 @@ class Reader {
     std::map<std::string, const char*> seen;
     std::vector<std::string> other_dims;
     for (const auto& [dim, tag] : physical) {
-      if (dim > 1) {
+      if (dim > 2) {
         other_dims.push_back(std::to_string(dim));
         continue;
       }
       std::string name;
       gmsh::model::getPhysicalName(dim, tag, name);
-      if (name.empty()) name = (dim == 1 ? "line_" : "point_") + std::to_string(tag);
-      const char* kind = dim == 1 ? "line (dimension 1)" : "point (dimension 0)";
+      if (name.empty()) name = (dim == 2 ? "surface_" : dim == 1 ? "line_" : "point_") + std::to_string(tag);
+      const char* kind = dim == 2 ? "surface (dimension 2)" : dim == 1 ? "line (dimension 1)" : "point (dimension 0)";
       if (seen.count(name))
         fail("two physical groups are named '" + name + "' (a " + seen[name] + " and a " + kind +
              ", tag " + std::to_string(tag) + "): expected unique names");
@@ -321,10 +333,10 @@ class Reader {
       groups.push_back({dim, tag, name});
     }
     if (groups.empty())
-      fail(std::string("no physical groups of dimension 0 or 1") +
-           (other_dims.empty() ? "" : " (groups of higher dimension are not read yet)") +
-           ": expected the beam curves in a Physical Curve(\"name\") and named points in a "
-           "Physical Point(\"name\") (see meshes/README.md)");
+      fail(std::string("no physical groups of dimension 0, 1 or 2") +
+           (other_dims.empty() ? "" : " (volumes are not read)") +
+           ": expected the beam curves in a Physical Curve(\"name\"), the shell surfaces in a "
+           "Physical Surface(\"name\") and named points in a Physical Point(\"name\") (see meshes/README.md)");
 
     // Coordinates of every node (bulk, one call).
     std::unordered_map<std::size_t, Eigen::Vector3d> coords;
@@ -402,6 +414,45 @@ class Reader {
     }
 
     for (const Group& g : groups) {
+      if (g.dim != 2) continue;
+      MeshSurfaceBlock block;
+      block.name = g.name;
+      block.tag = g.tag;
+      std::vector<int> entities;
+      gmsh::model::getEntitiesForPhysicalGroup(2, g.tag, entities);
+      for (int entity : entities) {
+        std::vector<int> types;
+        std::vector<std::vector<std::size_t>> element_tags, node_tags;
+        gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, entity);
+        for (size_t t = 0; t < types.size(); ++t) {
+          if (element_tags[t].empty()) continue;
+          if (types[t] != kTriangle3 && types[t] != kQuadrangle4) {
+            std::string type_name;
+            int edim = 0, order = 0, nodes = 0, primary = 0;
+            std::vector<double> local_coords;
+            gmsh::model::mesh::getElementProperties(types[t], type_name, edim, order, nodes, local_coords, primary);
+            fail("physical group '" + g.name + "' (dimension 2) holds element " + std::to_string(element_tags[t][0]) +
+                 " of type '" + type_name + "' (gmsh type " + std::to_string(types[t]) +
+                 "): expected 3-node triangles (type 2) or 4-node quadrangles (type 3); shells are "
+                 "first order (Mesh.ElementOrder 1)");
+          }
+          const size_t per = types[t] == kTriangle3 ? 3 : 4;
+          for (size_t e = 0; e < element_tags[t].size(); ++e) {
+            std::vector<int> el;
+            for (size_t k = 0; k < per; ++k) el.push_back(local_id(node_tags[t][per * e + k], g));
+            block.elements.push_back(el);
+            block.element_tags.push_back(element_tags[t][e]);
+          }
+        }
+      }
+      if (block.elements.empty())
+        fail("physical group '" + g.name + "' (dimension 2) has no surface elements: expected a "
+             "meshed surface (does it name surfaces that exist?)");
+      orient(block, mesh);
+      mesh.surface_blocks.push_back(std::move(block));
+    }
+
+    for (const Group& g : groups) {
       if (g.dim != 0) continue;
       std::vector<std::size_t> tags;
       std::vector<double> xyz;
@@ -411,6 +462,66 @@ class Reader {
              " nodes: expected exactly one (a named point is one geometry point)");
       mesh.named_points[g.name] = local_id(tags[0], g);
     }
+  }
+
+  /// Makes the elements of a surface block agree in orientation: a breadth-first walk over each
+  /// component connected through edges shared by exactly two elements, from its lowest-tag
+  /// element, reversing elements that traverse a shared edge in the same direction as their
+  /// neighbour. A contradiction (non-orientable surface) fails; reversals are reported.
+  void orient(MeshSurfaceBlock& block, MeshData& mesh) const {
+    const size_t ne = block.elements.size();
+    std::map<std::pair<int, int>, std::vector<size_t>> edge_elements;
+    for (size_t e = 0; e < ne; ++e) {
+      const auto& el = block.elements[e];
+      for (size_t k = 0; k < el.size(); ++k) edge_elements[std::minmax(el[k], el[(k + 1) % el.size()])].push_back(e);
+    }
+    // +1 if element e runs from a to b along its boundary, −1 if from b to a.
+    auto direction = [&](size_t e, int a, int b) {
+      const auto& el = block.elements[e];
+      for (size_t k = 0; k < el.size(); ++k) {
+        if (el[k] == a && el[(k + 1) % el.size()] == b) return 1;
+        if (el[k] == b && el[(k + 1) % el.size()] == a) return -1;
+      }
+      return 0;
+    };
+    std::vector<size_t> order(ne);
+    for (size_t e = 0; e < ne; ++e) order[e] = e;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return block.element_tags[a] < block.element_tags[b]; });
+    std::vector<int> flip(ne, 0);  // 0: not reached; +1 keep; −1 reverse
+    size_t reversed = 0;
+    for (size_t seed : order) {
+      if (flip[seed] != 0) continue;
+      flip[seed] = 1;
+      std::vector<size_t> queue{seed};
+      for (size_t qi = 0; qi < queue.size(); ++qi) {
+        const size_t e = queue[qi];
+        const auto& el = block.elements[e];
+        for (size_t k = 0; k < el.size(); ++k) {
+          const int a = el[k], b = el[(k + 1) % el.size()];
+          const auto& sharing = edge_elements[std::minmax(a, b)];
+          if (sharing.size() != 2) continue;
+          const size_t o = sharing[0] == e ? sharing[1] : sharing[0];
+          // Consistent: the neighbour runs the shared edge the other way (after both flips).
+          const int want = -flip[e] * direction(e, a, b) * direction(o, a, b);
+          if (flip[o] == 0) {
+            flip[o] = want;
+            queue.push_back(o);
+          } else if (flip[o] != want) {
+            fail("physical group '" + block.name + "' (dimension 2) cannot be oriented consistently: element " +
+                 std::to_string(block.element_tags[o]) + " would need both normals (a non-orientable surface, "
+                 "like a Moebius strip); split it into orientable groups");
+          }
+        }
+      }
+    }
+    for (size_t e = 0; e < ne; ++e)
+      if (flip[e] < 0) {
+        std::reverse(block.elements[e].begin() + 1, block.elements[e].end());
+        ++reversed;
+      }
+    if (reversed > 0)
+      mesh.warnings.push_back("physical group '" + block.name + "': " + std::to_string(reversed) +
+                              " element(s) reversed so that their normals agree with their neighbours'");
   }
 
   std::string path_;

@@ -32,5 +32,7 @@ TimeFunctionPtr make_linear(double rate, double offset);
 TimeFunctionPtr make_sine(double amplitude, double frequency, double phase, double offset);
 /// Piecewise linear through (t_i, v_i), constant beyond the ends; t strictly increasing.
 TimeFunctionPtr make_table(std::vector<double> t, std::vector<double> v);
+/// c · f(t) (e.g. a load per length times the length a node carries).
+TimeFunctionPtr make_scaled(TimeFunctionPtr f, double c);
 
 }  // namespace alphaflex

@@ -1,7 +1,9 @@
 #pragma once
-// gmsh meshes → MeshData: node coordinates, named line blocks (2-node segments) and named points.
+// gmsh meshes → MeshData: node coordinates, named line blocks (2-node segments), named surface
+// blocks (3-node triangles and 4-node quadrilaterals, consistently oriented) and named points.
 // Upstream of the model: this module knows nothing of nodes' kinds, elements or PETSc. It reads a
-// .msh as is, or opens a .geo and meshes it in 1D with the gmsh C++ API (libgmsh). Conventions for
+// .msh as is, or opens a .geo and meshes it (in 2D if it has physical surfaces, else in 1D) with the
+// gmsh C++ API (libgmsh). Conventions for
 // .geo parameters and physical groups: meshes/README.md.
 #include <Eigen/Core>
 #include <array>
@@ -34,6 +36,16 @@ struct MeshLineBlock {
   std::vector<std::size_t> element_tags;       ///< gmsh tag of the element each segment comes from
 };
 
+/// A physical group of dimension 2: 3-node triangles and 4-node quadrilaterals, mixed.
+struct MeshSurfaceBlock {
+  std::string name;                            ///< physical name, or "surface_<tag>" if unnamed
+  int tag = 0;                                 ///< gmsh physical tag
+  /// Local node ids (3 or 4), counter-clockwise about the element normal; the normals of elements
+  /// sharing an edge agree (read_mesh reverses elements that disagreed with their neighbours).
+  std::vector<std::vector<int>> elements;
+  std::vector<std::size_t> element_tags;       ///< gmsh tag of each element
+};
+
 struct MeshData {
   std::string file;                           ///< the path as given to read_mesh
   std::vector<Eigen::Vector3d> points;        ///< node coordinates (m), index = local node id
@@ -45,22 +57,27 @@ struct MeshData {
   std::map<std::string, double> parameters;
   /// gmsh's warnings while reading and meshing ("Warning: " removed), for the caller to print.
   std::vector<std::string> warnings;
-  // Surface groups (shells) will come as surface blocks next to line_blocks.
+  std::vector<MeshSurfaceBlock> surface_blocks;  ///< physical groups of dimension 2, by physical tag
 
   /// The line block named `name`, or nullptr.
   const MeshLineBlock* find_line_block(const std::string& name) const;
+  /// The surface block named `name`, or nullptr.
+  const MeshSurfaceBlock* find_surface_block(const std::string& name) const;
 };
 
-/// Reads a .msh, or opens a .geo and meshes it in 1D. Throws InputError, whose message starts
+/// Reads a .msh, or opens a .geo and meshes it. Throws InputError, whose message starts
 /// with `context` (e.g. "scene.yaml:12: mesh.file") and names the file and what was expected, for
 /// every failure: missing or unreadable file, unknown extension, gmsh's own errors, options that
-/// do not fit the file, unknown parameters, no physical groups of dimension 0 or 1, unsupported
-/// element types, named points that are not exactly one node, duplicate group names.
+/// do not fit the file, unknown parameters, no physical groups, unsupported element types
+/// (second-order surface elements among them), named points that are not exactly one node,
+/// duplicate group names, a surface block whose elements cannot be oriented consistently
+/// (non-orientable, like a Möbius strip). Elements reversed to agree with their neighbours are
+/// reported in `warnings`.
 ///
 /// Local node ids are compact (only nodes of the returned groups) and deterministic: in order of
-/// first use by the line blocks (by physical tag, gmsh element order), then the named points'
-/// nodes (by physical tag). Each call runs its own gmsh session (initialize ... finalize), so
-/// gmsh must not be used elsewhere in the process at the same time; concurrent calls from
+/// first use by the line blocks (by physical tag, gmsh element order), then by the surface blocks
+/// (the same), then the named points' nodes (by physical tag). Each call runs its own gmsh session
+/// (initialize ... finalize), so gmsh must not be used elsewhere in the process at the same time; concurrent calls from
 /// threads are serialized. It writes no file of its own, so every MPI rank may read the same file
 /// at once (gmsh's first initialize in a process makes FLTK rewrite its preference file, with the
 /// same content on every rank: meshes/README.md).
