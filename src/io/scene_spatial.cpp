@@ -175,70 +175,70 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
     if (group) firsts = group->nodes;
     else firsts.push_back(mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false));
     for (size_t k = 0; k < firsts.size(); ++k) {
-    const int b1 = firsts[k];
-    const std::string jname = group ? name + "[" + std::to_string(k) + "]" : name;
-    if (group && model.find_constraint(jname) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + jname + "' exists already");
-    if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
-    const Pose<double> p1 = initial_pose(model, b1);
-    const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)
-                                : j["location"] ? rd.vec3(j["location"], path + ".location")
-                                                : p1.x;
-    // Joint frame (world, t = 0): a3 along the axis; universal: a1 = axis (on body 1), a2 = axis2.
-    // Without an axis key, a marker's frame is the joint frame (its z axis is the joint axis).
-    Eigen::Matrix3d R = mk1 ? Eigen::Matrix3d(p1.R * mk1->rotation) : p1.R;
-    if (mk1 && has_axis && !j["axis"]) {
-      R = p1.R * mk1->rotation;
-    } else if (type == SpatialJointType::Universal) {
-      const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
-      const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
-      if (std::fabs(a1.dot(a2)) > 1e-9)
-        rd.fail(j["axis2"], path + ".axis2", "the two axes of a universal joint must be perpendicular");
-      R.col(0) = a1;
-      R.col(1) = a2;
-      R.col(2) = a1.cross(a2);
-    } else if (has_axis) {
-      const Eigen::Vector3d a3 = rd.direction(rd.need(j, "axis", path), path + ".axis");
-      // a1: the `reference` direction (where a driver's angle is zero), else any perpendicular.
-      Eigen::Vector3d ref = j["reference"] ? rd.direction(j["reference"], path + ".reference")
-                                           : (std::fabs(a3.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
-      ref -= a3.dot(ref) * a3;
-      if (ref.norm() < 1e-9) rd.fail(j["reference"], path + ".reference", "must not be parallel to the axis");
-      R.col(0) = ref.normalized();
-      R.col(2) = a3;
-      R.col(1) = a3.cross(R.col(0));
-    } else if (j["reference"]) {
-      R = read_orientation(rd, j["reference"], path + ".reference");
-    }
-    TimeFunctionPtr angle, displacement;
-    if (const YAML::Node d = j["driver"]) {
-      rd.keys(d, path + ".driver", {"angle", "displacement"});
-      if (d["angle"]) {
-        if (type == SpatialJointType::Prismatic)
-          rd.fail(d["angle"], path + ".driver.angle", "a prismatic joint has no rotation to drive (use displacement)");
-        angle = rd.function(d["angle"], path + ".driver.angle");
+      const int b1 = firsts[k];
+      const std::string jname = group ? name + "[" + std::to_string(k) + "]" : name;
+      if (group && model.find_constraint(jname) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + jname + "' exists already");
+      if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
+      const Pose<double> p1 = initial_pose(model, b1);
+      const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)
+                                  : j["location"] ? rd.vec3(j["location"], path + ".location")
+                                                  : p1.x;
+      // Joint frame (world, t = 0): a3 along the axis; universal: a1 = axis (on body 1), a2 = axis2.
+      // Without an axis key, a marker's frame is the joint frame (its z axis is the joint axis).
+      Eigen::Matrix3d R = mk1 ? Eigen::Matrix3d(p1.R * mk1->rotation) : p1.R;
+      if (mk1 && has_axis && !j["axis"]) {
+        R = p1.R * mk1->rotation;
+      } else if (type == SpatialJointType::Universal) {
+        const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
+        const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
+        if (std::fabs(a1.dot(a2)) > 1e-9)
+          rd.fail(j["axis2"], path + ".axis2", "the two axes of a universal joint must be perpendicular");
+        R.col(0) = a1;
+        R.col(1) = a2;
+        R.col(2) = a1.cross(a2);
+      } else if (has_axis) {
+        const Eigen::Vector3d a3 = rd.direction(rd.need(j, "axis", path), path + ".axis");
+        // a1: the `reference` direction (where a driver's angle is zero), else any perpendicular.
+        Eigen::Vector3d ref = j["reference"] ? rd.direction(j["reference"], path + ".reference")
+                                             : (std::fabs(a3.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
+        ref -= a3.dot(ref) * a3;
+        if (ref.norm() < 1e-9) rd.fail(j["reference"], path + ".reference", "must not be parallel to the axis");
+        R.col(0) = ref.normalized();
+        R.col(2) = a3;
+        R.col(1) = a3.cross(R.col(0));
+      } else if (j["reference"]) {
+        R = read_orientation(rd, j["reference"], path + ".reference");
       }
-      if (d["displacement"]) {
-        if (type == SpatialJointType::Revolute)
-          rd.fail(d["displacement"], path + ".driver.displacement", "a revolute joint has no translation to drive (use angle)");
-        displacement = rd.function(d["displacement"], path + ".driver.displacement");
+      TimeFunctionPtr angle, displacement;
+      if (const YAML::Node d = j["driver"]) {
+        rd.keys(d, path + ".driver", {"angle", "displacement"});
+        if (d["angle"]) {
+          if (type == SpatialJointType::Prismatic)
+            rd.fail(d["angle"], path + ".driver.angle", "a prismatic joint has no rotation to drive (use displacement)");
+          angle = rd.function(d["angle"], path + ".driver.angle");
+        }
+        if (d["displacement"]) {
+          if (type == SpatialJointType::Revolute)
+            rd.fail(d["displacement"], path + ".driver.displacement", "a revolute joint has no translation to drive (use angle)");
+          displacement = rd.function(d["displacement"], path + ".driver.displacement");
+        }
       }
-    }
-    if (mk2) {
-      const Pose<double> p2 = initial_pose(model, b2);
-      const Eigen::Vector3d at2 = p2.x + p2.R * mk2->position;
-      if ((at2 - loc).norm() > 1e-9 * std::max(1.0, loc.norm()))
-        rd.fail(j["marker2"], path + ".marker2",
-                "is not at the joint's location at t = 0 (distance " + std::to_string((at2 - loc).norm()) + " m)");
-    }
-    std::vector<int> nodes{b1};
-    if (b2 >= 0) nodes.push_back(b2);
-    const SpatialMarker A = marker_at(model, b1, 0, loc, R);
-    const SpatialMarker B = marker_at(model, b2, 1, loc, R);
-    try {
-      model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, type, A, B, angle, displacement));
-    } catch (const std::invalid_argument& e) {
-      rd.fail(j, path, e.what());
-    }
+      if (mk2) {
+        const Pose<double> p2 = initial_pose(model, b2);
+        const Eigen::Vector3d at2 = p2.x + p2.R * mk2->position;
+        if ((at2 - loc).norm() > 1e-9 * std::max(1.0, loc.norm()))
+          rd.fail(j["marker2"], path + ".marker2",
+                  "is not at the joint's location at t = 0 (distance " + std::to_string((at2 - loc).norm()) + " m)");
+      }
+      std::vector<int> nodes{b1};
+      if (b2 >= 0) nodes.push_back(b2);
+      const SpatialMarker A = marker_at(model, b1, 0, loc, R);
+      const SpatialMarker B = marker_at(model, b2, 1, loc, R);
+      try {
+        model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, type, A, B, angle, displacement));
+      } catch (const std::invalid_argument& e) {
+        rd.fail(j, path, e.what());
+      }
     }
   }
 }
