@@ -39,7 +39,11 @@ CASES = [
 
 
 def read_ref(name):
-    return np.genfromtxt(os.path.join(REF, name), delimiter=",", names=True, comments="#")
+    """A reference table: '#' lines (source), then a header row and numbers."""
+    lines = [l for l in open(os.path.join(REF, name)) if not l.startswith("#")]
+    cols = lines[0].strip().split(",")
+    values = np.array([[float(x) for x in l.split(",")] for l in lines[1:] if l.strip()])
+    return {c: values[:, k] for k, c in enumerate(cols)}
 
 
 def run(exe, scene, sets, tag):
