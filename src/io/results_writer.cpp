@@ -31,17 +31,50 @@ void write_ints(hid_t loc, const char* name, const std::vector<int>& v) {
   H5Sclose(space);
 }
 
+/// Shell elements (ReissnerMindlinShell), recognised by their type: io needs no element header.
+bool is_shell(const Element& e) {
+  const std::string type = e.type();
+  return (type == "shell_quad4" && e.nodes().size() == 4) || (type == "shell_tri3" && e.nodes().size() == 3);
+}
+
+/// Result fields (Element::output) of the model's elements `which` at state s: one vector per field
+/// (cell data), `nf` fields.
+std::vector<std::vector<double>> element_fields(const Model& model, const std::vector<int>& which, size_t nf,
+                                                const MechanicalState& s) {
+  std::vector<std::vector<double>> fields(nf, std::vector<double>(which.size(), 0.0));
+  LocalState ls;
+  Eigen::VectorXd values;
+  for (size_t b = 0; b < which.size(); ++b) {
+    const Element& e = *model.elements()[static_cast<size_t>(which[b])];
+    const auto idx = model.dofs_of(e.nodes());
+    ls.q = gather(s.q, model.confs_of(e.nodes()));
+    ls.v = gather(s.v, idx);
+    ls.qdd = gather(s.qdd, idx);
+    ls.t = s.t;
+    e.output(ls, values);
+    for (size_t f = 0; f < nf && f < static_cast<size_t>(values.size()); ++f) fields[f][b] = values[static_cast<Eigen::Index>(f)];
+  }
+  return fields;
+}
+
 }  // namespace
 
 ResultsWriter::ResultsWriter(const Model& model, const std::string& outdir, const std::string& name, bool hdf5,
                              int rank)
     : model_(model), active_(rank == 0), hdf5_(hdf5) {
-  // Beams (two-node elements with result fields) are drawn as line segments between their nodes.
+  // Beams (two-node elements with result fields) are drawn as line segments between their nodes,
+  // shells (3- and 4-node shell elements) as triangles and quadrilaterals.
   for (size_t e = 0; e < model.elements().size(); ++e) {
     const Element& el = *model.elements()[e];
     if (el.nodes().size() == 2 && !el.output_names().empty()) {
       if (beam_fields_.empty()) beam_fields_ = el.output_names();
       if (el.output_names() == beam_fields_) beams_.push_back(static_cast<int>(e));
+    } else if (is_shell(el) && !el.output_names().empty()) {
+      if (shell_fields_.empty()) shell_fields_ = el.output_names();
+      if (el.output_names() == shell_fields_) {
+        shells_.push_back(static_cast<int>(e));
+        shell_topology_size_ += 1 + el.nodes().size();
+      }
     }
   }
   namespace fs = std::filesystem;
@@ -71,6 +104,14 @@ ResultsWriter::ResultsWriter(const Model& model, const std::string& outdir, cons
     std::vector<int> conn;
     for (int e : beams_) for (int n : model_.elements()[static_cast<size_t>(e)]->nodes()) conn.push_back(n);
     if (!beams_.empty()) write_ints(topo, "beam_connectivity", conn);
+    // XDMF Mixed topology: per cell its XDMF type (4 triangle, 5 quadrilateral), then its nodes.
+    conn.clear();
+    for (int e : shells_) {
+      const auto& en = model_.elements()[static_cast<size_t>(e)]->nodes();
+      conn.push_back(en.size() == 3 ? 4 : 5);
+      for (int n : en) conn.push_back(n);
+    }
+    if (!shells_.empty()) write_ints(topo, "shell_connectivity", conn);
     H5Gclose(topo);
   }
 }
@@ -166,20 +207,14 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   if (!beams_.empty()) {
     // Section forces and strains per beam element (constant on a two-node element): cell data.
     const size_t nb = beams_.size(), nf = beam_fields_.size();
-    std::vector<std::vector<double>> fields(nf, std::vector<double>(nb, 0.0));
-    LocalState ls;
-    Eigen::VectorXd values;
-    for (size_t b = 0; b < nb; ++b) {
-      const Element& e = *model_.elements()[static_cast<size_t>(beams_[b])];
-      const auto idx = model_.dofs_of(e.nodes());
-      ls.q = gather(s.q, model_.confs_of(e.nodes()));
-      ls.v = gather(s.v, idx);
-      ls.qdd = gather(s.qdd, idx);
-      ls.t = s.t;
-      e.output(ls, values);
-      for (size_t f = 0; f < nf && f < static_cast<size_t>(values.size()); ++f) fields[f][b] = values[static_cast<Eigen::Index>(f)];
-    }
+    const auto fields = element_fields(model_, beams_, nf, s);
     for (size_t f = 0; f < nf; ++f) write_array(g, ("beam_" + beam_fields_[f]).c_str(), fields[f].data(), nb, 1);
+  }
+  if (!shells_.empty()) {
+    // Stress resultants and von Mises stresses per shell element (its area-weighted mean): cell data.
+    const size_t ns = shells_.size(), nf = shell_fields_.size();
+    const auto fields = element_fields(model_, shells_, nf, s);
+    for (size_t f = 0; f < nf; ++f) write_array(g, ("shell_" + shell_fields_[f]).c_str(), fields[f].data(), ns, 1);
   }
   write_array(g, "joint_location", jloc.data(), nj, 3);
   write_array(g, "joint_force", jforce.data(), nj, 3);
@@ -271,6 +306,37 @@ void ResultsWriter::write_xdmf() const {
       for (const auto& f : beam_fields_) {
         x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
         item(groups_[s], ("beam_" + f).c_str(), nb, 1);
+        x << "    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  }
+  if (!shells_.empty()) {
+    // Shells: triangles and quadrilaterals (one Mixed topology) in the deformed configuration,
+    // node motion and the elements' resultants and stresses.
+    const size_t ns = shells_.size();
+    x << "  <Grid Name=\"shells\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < times_.size(); ++s) {
+      x << "   <Grid Name=\"shells\" GridType=\"Uniform\">\n    <Time Value=\"" << times_[s] << "\"/>\n"
+        << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << ns << "\">\n"
+        << "      <DataItem Dimensions=\"" << shell_topology_size_
+        << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5_name_
+        << ":/topology/shell_connectivity</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
+      item(groups_[s], "node_position", nn, 3);
+      x << "    </Geometry>\n";
+      for (const auto& [aname, set] : {std::pair<const char*, const char*>{"displacement", "node_displacement"},
+                                       {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"}}) {
+        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\"Vector\" Center=\"Node\">\n";
+        item(groups_[s], set, nn, 3);
+        x << "    </Attribute>\n";
+      }
+      x << "    <Attribute Name=\"quaternion\" AttributeType=\"Matrix\" Center=\"Node\">\n";
+      item(groups_[s], "node_quaternion", nn, 4);
+      x << "    </Attribute>\n";
+      for (const auto& f : shell_fields_) {
+        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+        item(groups_[s], ("shell_" + f).c_str(), ns, 1);
         x << "    </Attribute>\n";
       }
       x << "   </Grid>\n";

@@ -1,8 +1,10 @@
 #pragma once
 // Results for ParaView and for scripts: an HDF5 file with one group per output step and an XDMF
 // index (temporal collections "bodies" and "joints" as polyvertex grids with node frames (axes and
-// quaternion) and "beams" as line segments in the deformed configuration with section forces and
-// strains as cell data; Precision="8" doubles),
+// quaternion), "beams" as line segments in the deformed configuration with section forces and
+// strains as cell data, and "shells" as triangles and quadrilaterals (one XDMF Mixed topology) in
+// the deformed configuration with stress resultants and von Mises stresses as cell data;
+// Precision="8" doubles),
 // plus the sensors as CSV (header row, first column t, 17 significant digits).
 //
 // With the replicated state of the core engine, rank 0 writes everything; the parallel issue
@@ -49,6 +51,9 @@ class ResultsWriter {
   std::vector<std::string> groups_;
   std::vector<int> beams_;                 ///< elements drawn as beam segments
   std::vector<std::string> beam_fields_;   ///< their result fields (cell data)
+  std::vector<int> shells_;                ///< elements drawn as shell triangles and quadrilaterals
+  std::vector<std::string> shell_fields_;  ///< their result fields (cell data)
+  size_t shell_topology_size_ = 0;         ///< length of /topology/shell_connectivity (Mixed)
 };
 
 }  // namespace alphaflex

@@ -1,0 +1,211 @@
+// Shells in the results (io/results_writer.hpp): a small mixed mesh of ReissnerMindlinShell
+// quadrilaterals and triangles, built here in C++ next to a node that no shell uses, written at two
+// states; the HDF5 datasets are read back with the HDF5 C API and compared with the model: the
+// Mixed connectivity (XDMF type code, then the model's node ids), the node positions and
+// displacements of the deformed state, and every shell_<field> equal to the element's own output.
+// The XDMF index must have a "shells" grid with a Mixed topology and every field as cell data.
+// The files stay in results_shells/ of the working directory: ctest scenes.paraview_shells_unit
+// opens them with ParaView (tests/scenes/paraview_shells.py).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/shell.hpp"
+#include "alphaflex/io/results_writer.hpp"
+#include "alphaflex/model/model.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
+
+using namespace alphaflex;
+
+namespace {
+
+/// A dataset of the file as doubles (any shape, row-major); empty if it does not exist.
+std::vector<double> read_doubles(hid_t file, const std::string& path) {
+  if (H5Lexists(file, path.c_str(), H5P_DEFAULT) <= 0) return {};
+  const hid_t set = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  const hid_t space = H5Dget_space(set);
+  std::vector<double> v(static_cast<size_t>(H5Sget_simple_extent_npoints(space)));
+  if (!v.empty()) H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(space);
+  H5Dclose(set);
+  return v;
+}
+
+std::vector<int> read_ints(hid_t file, const std::string& path) {
+  if (H5Lexists(file, path.c_str(), H5P_DEFAULT) <= 0) return {};
+  const hid_t set = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  const hid_t space = H5Dget_space(set);
+  std::vector<int> v(static_cast<size_t>(H5Sget_simple_extent_npoints(space)));
+  if (!v.empty()) H5Dread(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Sclose(space);
+  H5Dclose(set);
+  return v;
+}
+
+/// Number of dimensions and extents of a dataset.
+std::vector<hsize_t> shape(hid_t file, const std::string& path) {
+  const hid_t set = H5Dopen2(file, path.c_str(), H5P_DEFAULT);
+  const hid_t space = H5Dget_space(set);
+  std::vector<hsize_t> dims(static_cast<size_t>(H5Sget_simple_extent_ndims(space)));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  H5Sclose(space);
+  H5Dclose(set);
+  return dims;
+}
+
+Node frame_node(const std::string& name, const Eigen::Vector3d& x) {
+  Node n;
+  n.name = name;
+  n.kind = NodeKind::Frame3D;
+  n.q0.resize(7);
+  store_pose(x, Eigen::Matrix3d::Identity(), n.q0.data());
+  n.v0 = Eigen::VectorXd::Zero(6);
+  return n;
+}
+
+}  // namespace
+
+TEST(ResultsShells, MixedShellMeshIsWrittenWithConnectivityGeometryAndResultants) {
+  // Node 0 belongs to no shell (a body, say), so the shell connectivity must use model node ids.
+  // Shell nodes 1..8: two quadrilaterals [1 2 5 4], [2 3 6 5] and two triangles [3 7 6], [6 7 8].
+  Model model;
+  model.name = "shells";
+  model.add_node(frame_node("hub", Eigen::Vector3d(-1, 0, 0)));
+  const std::vector<Eigen::Vector3d> X = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0},
+                                          {1, 1, 0}, {2, 1, 0}, {3, 0.5, 0}, {3, 1.5, 0}};
+  for (size_t i = 0; i < X.size(); ++i) model.add_node(frame_node("p" + std::to_string(i + 1), X[i]));
+  const std::vector<std::vector<int>> cells = {{1, 2, 5, 4}, {2, 3, 6, 5}, {3, 7, 6}, {6, 7, 8}};
+  const ShellSection section = ShellSection::isotropic(2.1e11, 0.3, 7800, 0.01);
+  for (size_t c = 0; c < cells.size(); ++c) {
+    std::vector<Pose<double>> ref;
+    std::vector<Eigen::Vector3d> dirs;
+    for (int n : cells[c]) {
+      ref.push_back({X[static_cast<size_t>(n - 1)], Eigen::Matrix3d::Identity()});
+      dirs.emplace_back(0, 0, 1);
+    }
+    model.add_element(std::make_unique<ReissnerMindlinShell>("s" + std::to_string(c), cells[c], section, ref, dirs,
+                                                             Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero()));
+  }
+  // A displacement sensor on the corner (3, 1.5, 0): tests/scenes/paraview_shells.py compares the
+  // motion of that point in ParaView with the CSV (ctest scenes.paraview_shells_unit).
+  Sensor tip;
+  tip.name = "tip_w";
+  tip.kind = Sensor::Kind::PointDisplacement;
+  tip.node = 8;
+  tip.component = 2;
+  tip.initial = X[7];
+  model.add_sensor(tip);
+  ASSERT_STREQ(model.elements()[0]->type(), "shell_quad4");
+  ASSERT_STREQ(model.elements()[2]->type(), "shell_tri3");
+
+  // The deformed state: the plate bent about the y axis, w = 0.05 x², stretched by 1% in x, the
+  // node frames turned by the slope; every node moves.
+  MechanicalState s0 = model.initial_state();
+  MechanicalState s1 = s0;
+  s1.t = 0.5;
+  for (size_t i = 0; i < model.nodes().size(); ++i) {
+    const Node& n = model.nodes()[i];
+    const Eigen::Vector3d x0 = n.q0.head<3>();
+    const Eigen::Vector3d x(1.01 * x0.x(), x0.y() + 0.002 * x0.x(), 0.05 * x0.x() * x0.x());
+    const Eigen::Matrix3d R = exp_so3<double>(Eigen::Vector3d(0, -std::atan(0.1 * x0.x()), 0.01 * x0.y()));
+    store_pose(x, R, s1.q.data() + n.first_conf);
+    s1.v.segment(n.first_dof, 6) << 0.1 * x0.x(), 0, 0.2, 0, 0.3, 0;
+  }
+
+  const std::string outdir = (std::filesystem::current_path() / "results_shells").string();
+  std::string h5, xdmf;
+  {
+    ResultsWriter w(model, outdir, "shells", true, 0);
+    for (const MechanicalState* s : {&s0, &s1}) {
+      w.write_sensors(s->t, {model.sensors()[0].evaluate(model, *s)});
+      w.write_fields(*s);
+    }
+    w.finish();
+    h5 = w.h5_path();
+    xdmf = w.xdmf_path();
+  }
+
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << h5;
+  // Mixed topology: (4 = triangle | 5 = quadrilateral, then the node ids), cells in model order.
+  const std::vector<int> conn = read_ints(f, "/topology/shell_connectivity");
+  const std::vector<int> want = {5, 1, 2, 5, 4, 5, 2, 3, 6, 5, 4, 3, 7, 6, 4, 6, 7, 8};
+  EXPECT_EQ(conn, want);
+  EXPECT_EQ(H5Lexists(f, "/topology/beam_connectivity", H5P_DEFAULT), 0) << "shells are not beams";
+
+  const size_t nn = model.nodes().size(), ns = cells.size();
+  const auto names = model.elements()[0]->output_names();
+  ASSERT_EQ(names.size(), 10u);
+  for (int which = 0; which < 2; ++which) {
+    const MechanicalState& s = which == 0 ? s0 : s1;
+    const std::string step = which == 0 ? "/step_000000/" : "/step_000001/";
+    SCOPED_TRACE(step);
+    const std::vector<double> pos = read_doubles(f, step + "node_position");
+    const std::vector<double> disp = read_doubles(f, step + "node_displacement");
+    ASSERT_EQ(pos.size(), 3 * nn);
+    ASSERT_EQ(disp.size(), 3 * nn);
+    EXPECT_EQ(disp[3 * 8 + 2], model.sensors()[0].evaluate(model, s));
+    for (size_t i = 0; i < nn; ++i)
+      for (int k = 0; k < 3; ++k) {
+        const Node& n = model.nodes()[i];
+        EXPECT_EQ(pos[3 * i + k], s.q[n.first_conf + k]);
+        EXPECT_NEAR(disp[3 * i + k], s.q[n.first_conf + k] - n.q0[k], 1e-15);
+      }
+    // Every field: one value per shell element, equal to the element's own output at that state.
+    std::vector<Eigen::VectorXd> expected(ns);
+    for (size_t e = 0; e < ns; ++e) {
+      const Element& el = *model.elements()[e];
+      LocalState ls;
+      const auto idx = model.dofs_of(el.nodes());
+      ls.q = gather(s.q, model.confs_of(el.nodes()));
+      ls.v = gather(s.v, idx);
+      ls.qdd = gather(s.qdd, idx);
+      ls.t = s.t;
+      el.output(ls, expected[e]);
+      ASSERT_EQ(expected[e].size(), static_cast<Eigen::Index>(names.size()));
+    }
+    for (size_t k = 0; k < names.size(); ++k) {
+      const std::string set = step + "shell_" + names[k];
+      const std::vector<double> v = read_doubles(f, set);
+      ASSERT_EQ(v.size(), ns) << set;
+      EXPECT_EQ(shape(f, set), std::vector<hsize_t>{ns}) << set;
+      for (size_t e = 0; e < ns; ++e)
+        EXPECT_EQ(v[e], expected[e][static_cast<Eigen::Index>(k)]) << set << " element " << e;
+    }
+    double largest = 0.0;
+    for (size_t k = 0; k < names.size(); ++k)
+      for (size_t e = 0; e < ns; ++e) largest = std::max(largest, std::fabs(expected[e][static_cast<Eigen::Index>(k)]));
+    if (s.t == 0.0) {
+      EXPECT_LT(largest, 1e-6) << "the reference state is stress free";
+    } else {
+      EXPECT_GT(largest, 1e3) << "the bent and stretched plate carries resultants";
+    }
+  }
+  H5Fclose(f);
+
+  // The XDMF index: a temporal collection "shells" of Mixed grids, the node positions of each step
+  // as geometry, every field as cell data and the displacement as node data.
+  std::ifstream in(xdmf);
+  ASSERT_TRUE(in.good()) << xdmf;
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string x = buf.str();
+  EXPECT_NE(x.find("<Grid Name=\"shells\" GridType=\"Collection\" CollectionType=\"Temporal\">"), std::string::npos);
+  EXPECT_NE(x.find("<Topology TopologyType=\"Mixed\" NumberOfElements=\"4\">"), std::string::npos);
+  EXPECT_NE(x.find("Dimensions=\"18\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+                   "shells.h5:/topology/shell_connectivity"),
+            std::string::npos);
+  EXPECT_NE(x.find("shells.h5:/step_000001/shell_von_mises_top"), std::string::npos);
+  for (const auto& name : names)
+    EXPECT_NE(x.find("<Attribute Name=\"" + name + "\" AttributeType=\"Scalar\" Center=\"Cell\">"), std::string::npos)
+        << name;
+  EXPECT_EQ(x.find("<Grid Name=\"beams\""), std::string::npos);
+}
