@@ -380,15 +380,21 @@ void read_spatial_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, 
       sn.constraint = model.find_constraint(jn);
       if (sn.constraint < 0) rd.fail(s["joint"], path + ".joint", "no joint named '" + jn + "'");
       sn.component = component({"fx", "fy", "fz", "mx", "my", "mz"});
-    } else if (type == "beam_output") {
-      rd.keys(s, path, {"name", "type", "beam", "element", "component"});
+    } else if (type == "beam_output" || type == "shell_output") {
+      // A result field of one element of a beam or shell block (elements name[k], mesh order).
+      const bool beam = type == "beam_output";
+      const char* block = beam ? "beam" : "shell";
+      rd.keys(s, path, {"name", "type", block, "element", "component"});
       sn.kind = Sensor::Kind::ElementOutput;
-      const std::string bn = rd.text(rd.need(s, "beam", path), path + ".beam");
+      const std::string bn = rd.text(rd.need(s, block, path), path + "." + block);
       const int idx = rd.integer(rd.need(s, "element", path), path + ".element", 0);
       const std::string ename = bn + "[" + std::to_string(idx) + "]";
       for (size_t e = 0; e < model.elements().size(); ++e)
-        if (model.elements()[e]->name() == ename) sn.element = static_cast<int>(e);
-      if (sn.element < 0) rd.fail(s["element"], path + ".element", "beam '" + bn + "' has no element " + std::to_string(idx) + " (elements are numbered from 0 along the mesh)");
+        if (model.elements()[e]->name() == ename && !model.elements()[e]->output_names().empty()) sn.element = static_cast<int>(e);
+      if (sn.element < 0)
+        rd.fail(s["element"], path + ".element", std::string(block) + " '" + bn + "' has no element " + std::to_string(idx) +
+                                                     (beam ? " (elements are numbered from 0 along the mesh)"
+                                                           : " (elements are numbered from 0 in the mesh group's order)"));
       const auto outs = model.elements()[static_cast<size_t>(sn.element)]->output_names();
       const std::string c = rd.text(rd.need(s, "component", path), path + ".component");
       sn.component = -1;
@@ -402,7 +408,7 @@ void read_spatial_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, 
       rd.fail(s["type"], path + ".type",
               "unknown sensor type '" + type +
                   "' for dimension 3 (expected point_position, point_displacement, point_velocity, point_acceleration, "
-                  "body_rotation, joint_reaction, beam_output)");
+                  "body_rotation, joint_reaction, beam_output, shell_output)");
     }
     model.add_sensor(sn);
   }
