@@ -410,16 +410,9 @@ TEST(MeshErrors, NoPhysicalGroups) {
   const TempDir dir;
   const std::string geo = dir.write("plain.geo", "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0};\nLine(1) = {1, 2};\n");
   std::string e = error_of([&] { read_mesh(geo, {}, "ctx"); });
-  EXPECT_HAS(e, "no physical groups of dimension 0 or 1");
+  EXPECT_HAS(e, "no physical groups of dimension 0, 1 or 2");
   EXPECT_HAS(e, "Physical Curve(\"name\")");
-  const std::string surface = dir.write("surface.geo", R"(
-Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; Point(3) = {0, 1, 0};
-Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 1};
-Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
-Physical Surface("plate") = {1};
-)");
-  e = error_of([&] { read_mesh(surface, {}, "ctx"); });
-  EXPECT_HAS(e, "groups of higher dimension are not read yet");
+  EXPECT_HAS(e, "Physical Surface(\"name\")");
 }
 
 TEST(MeshErrors, Parameters) {
