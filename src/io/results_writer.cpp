@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
@@ -283,19 +284,18 @@ void ResultsWriter::write_xdmf() const {
        {{"displacement", "node_displacement"}, {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"},
         {"angle", "node_angle"}, {"axis", "node_axis"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"},
         {"quaternion", "node_quaternion"}});
-  if (!beams_.empty()) {
-    // Beams: line segments in the deformed configuration, node frames and section results.
-    const size_t nb = beams_.size();
-    x << "  <Grid Name=\"beams\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  // An element grid (beams, shells) per output step: its topology, the nodes' positions and
+  // motion as point data, the elements' results (prefix + field in the HDF5 file) as cell data.
+  using Pairs = std::vector<std::pair<const char*, const char*>>;
+  auto element_grid = [&](const char* name, const std::string& topology, const Pairs& vectors,
+                          const std::vector<std::string>& fields, const std::string& prefix, size_t ncells) {
+    x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (size_t s = 0; s < times_.size(); ++s) {
-      x << "   <Grid Name=\"beams\" GridType=\"Uniform\">\n    <Time Value=\"" << times_[s] << "\"/>\n"
-        << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nb << "\" NodesPerElement=\"2\">\n"
-        << "      <DataItem Dimensions=\"" << nb << " 2\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5_name_
-        << ":/topology/beam_connectivity</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
+      x << "   <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times_[s] << "\"/>\n"
+        << topology << "    <Geometry GeometryType=\"XYZ\">\n";
       item(groups_[s], "node_position", nn, 3);
       x << "    </Geometry>\n";
-      for (const auto& [aname, set] : {std::pair<const char*, const char*>{"displacement", "node_displacement"},
-                                       {"velocity", "node_velocity"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"}}) {
+      for (const auto& [aname, set] : vectors) {
         x << "    <Attribute Name=\"" << aname << "\" AttributeType=\"Vector\" Center=\"Node\">\n";
         item(groups_[s], set, nn, 3);
         x << "    </Attribute>\n";
@@ -303,45 +303,37 @@ void ResultsWriter::write_xdmf() const {
       x << "    <Attribute Name=\"quaternion\" AttributeType=\"Matrix\" Center=\"Node\">\n";
       item(groups_[s], "node_quaternion", nn, 4);
       x << "    </Attribute>\n";
-      for (const auto& f : beam_fields_) {
+      for (const auto& f : fields) {
         x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
-        item(groups_[s], ("beam_" + f).c_str(), nb, 1);
+        item(groups_[s], (prefix + f).c_str(), ncells, 1);
         x << "    </Attribute>\n";
       }
       x << "   </Grid>\n";
     }
     x << "  </Grid>\n";
+  };
+  if (!beams_.empty()) {
+    // Beams: line segments in the deformed configuration, node frames and section results.
+    const size_t nb = beams_.size();
+    std::ostringstream topo;
+    topo << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nb << "\" NodesPerElement=\"2\">\n"
+         << "      <DataItem Dimensions=\"" << nb << " 2\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5_name_
+         << ":/topology/beam_connectivity</DataItem>\n    </Topology>\n";
+    element_grid("beams", topo.str(),
+                 {{"displacement", "node_displacement"}, {"velocity", "node_velocity"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"}},
+                 beam_fields_, "beam_", nb);
   }
   if (!shells_.empty()) {
     // Shells: triangles and quadrilaterals (one Mixed topology) in the deformed configuration,
     // node motion and the elements' resultants and stresses.
     const size_t ns = shells_.size();
-    x << "  <Grid Name=\"shells\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (size_t s = 0; s < times_.size(); ++s) {
-      x << "   <Grid Name=\"shells\" GridType=\"Uniform\">\n    <Time Value=\"" << times_[s] << "\"/>\n"
-        << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << ns << "\">\n"
-        << "      <DataItem Dimensions=\"" << shell_topology_size_
-        << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5_name_
-        << ":/topology/shell_connectivity</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
-      item(groups_[s], "node_position", nn, 3);
-      x << "    </Geometry>\n";
-      for (const auto& [aname, set] : {std::pair<const char*, const char*>{"displacement", "node_displacement"},
-                                       {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"}}) {
-        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\"Vector\" Center=\"Node\">\n";
-        item(groups_[s], set, nn, 3);
-        x << "    </Attribute>\n";
-      }
-      x << "    <Attribute Name=\"quaternion\" AttributeType=\"Matrix\" Center=\"Node\">\n";
-      item(groups_[s], "node_quaternion", nn, 4);
-      x << "    </Attribute>\n";
-      for (const auto& f : shell_fields_) {
-        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
-        item(groups_[s], ("shell_" + f).c_str(), ns, 1);
-        x << "    </Attribute>\n";
-      }
-      x << "   </Grid>\n";
-    }
-    x << "  </Grid>\n";
+    std::ostringstream topo;
+    topo << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << ns << "\">\n"
+         << "      <DataItem Dimensions=\"" << shell_topology_size_ << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+         << h5_name_ << ":/topology/shell_connectivity</DataItem>\n    </Topology>\n";
+    element_grid("shells", topo.str(),
+                 {{"displacement", "node_displacement"}, {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"}},
+                 shell_fields_, "shell_", ns);
   }
   if (nj > 0) grid("joints", nj, "joints", "joint_location", {{"force", "joint_force"}, {"moment", "joint_moment"}});
   x << " </Domain>\n</Xdmf>\n";

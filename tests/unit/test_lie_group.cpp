@@ -129,18 +129,8 @@ TEST(LieGroup, SpatialTwinOfPlanarDoublePendulumMovesAlike) {
 }
 
 // Differences between two final states of the heavy top measured on the group.
-struct TopError {
-  double position, rotation, velocity, multiplier;
-};
-
-TopError top_difference(const RunSummary& a, const RunSummary& b) {
-  const Pose<double> pa = pose_of(a.final_state.q.data()), pb = pose_of(b.final_state.q.data());
-  TopError e;
-  e.position = (pa.x - pb.x).norm();
-  e.rotation = log_so3<double>(Eigen::Matrix3d(pa.R.transpose() * pb.R)).norm();
-  e.velocity = inf_norm(a.final_state.v - b.final_state.v);
-  e.multiplier = inf_norm(a.final_state.lambda - b.final_state.lambda);
-  return e;
+testing::StateDifference top_difference(const RunSummary& a, const RunSummary& b) {
+  return testing::spatial_difference(a.final_state, b.final_state);
 }
 
 // Order 2 on R³×SO(3) (Brüls, Cardona & Arnold 2012, Sec. 5) for ρ∞ = 0 and 0.7: the difference
@@ -156,7 +146,7 @@ TEST(LieGroup, HeavyTopConvergesWithOrderTwoOnTheGroup) {
                                              "solver.h=" + std::to_string(h)}));
     std::vector<double> h_fit, ex, er, ev, el;
     for (size_t k = 0; k + 1 < runs.size(); ++k) {
-      const TopError e = top_difference(runs[k], runs[k + 1]);
+      const auto e = top_difference(runs[k], runs[k + 1]);
       h_fit.push_back(hs[k]);
       ex.push_back(e.position);
       er.push_back(e.rotation);
@@ -225,20 +215,13 @@ TEST(LieGroup, FlexibleBeamConvergesWithOrderTwoForRhoZeroAndPointSeven) {
                                                "solver.h=" + std::to_string(h)}));
     std::vector<double> ex, er, ev, el;
     for (size_t k = 0; k + 1 < runs.size(); ++k) {
-      const Eigen::VectorXd& qa = runs[k].final_state.q;
-      const Eigen::VectorXd& qb = runs[k + 1].final_state.q;
-      double dx = 0.0, dr = 0.0;
-      for (Eigen::Index n = 0; n < qa.size() / 7; ++n) {
-        const Pose<double> a = pose_of(qa.data() + 7 * n), b = pose_of(qb.data() + 7 * n);
-        dx = std::max(dx, (a.x - b.x).norm());
-        dr = std::max(dr, log_so3<double>(Eigen::Matrix3d(a.R.transpose() * b.R)).norm());
-      }
-      ex.push_back(dx);
-      er.push_back(dr);
-      ev.push_back(inf_norm(runs[k].final_state.v - runs[k + 1].final_state.v));
-      el.push_back(inf_norm(runs[k].final_state.lambda - runs[k + 1].final_state.lambda));
-      std::printf("rho_inf %.1f h %.2e: |dx| %.3e m, |dR| %.3e rad, |dv| %.3e, |dlambda| %.3e\n", rho, hs[k], dx, dr,
-                  ev.back(), el.back());
+      const auto d = testing::spatial_difference(runs[k].final_state, runs[k + 1].final_state);
+      ex.push_back(d.position);
+      er.push_back(d.rotation);
+      ev.push_back(d.velocity);
+      el.push_back(d.multiplier);
+      std::printf("rho_inf %.1f h %.2e: |dx| %.3e m, |dR| %.3e rad, |dv| %.3e, |dlambda| %.3e\n", rho, hs[k], d.position,
+                  d.rotation, d.velocity, d.multiplier);
     }
     const std::vector<double> h_fit(hs.begin(), hs.end() - 1);
     std::printf("rho_inf %.1f slopes: position %.2f, rotation %.2f, velocity %.2f, multiplier %.2f\n", rho,

@@ -16,8 +16,6 @@ namespace {
 using testing::fitted_slope;
 using testing::run_scene;
 
-double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
-
 TEST(ShellDynamics, SpinUpConvergesWithOrderTwoInTimeForRhoPointSeven) {
   const std::vector<double> hs{4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4};
   std::vector<RunSummary> runs;
@@ -25,19 +23,13 @@ TEST(ShellDynamics, SpinUpConvergesWithOrderTwoInTimeForRhoPointSeven) {
     runs.push_back(run_scene("shell_spinup", {"solver.t_end=0.3", "solver.rho_inf=0.7", "solver.h=" + std::to_string(h)}));
   std::vector<double> ex, er, ev, el;
   for (size_t k = 0; k + 1 < runs.size(); ++k) {
-    const Eigen::VectorXd& qa = runs[k].final_state.q;
-    const Eigen::VectorXd& qb = runs[k + 1].final_state.q;
-    double dx = 0.0, dr = 0.0;
-    for (Eigen::Index n = 0; n < qa.size() / 7; ++n) {
-      const Pose<double> a = pose_of(qa.data() + 7 * n), b = pose_of(qb.data() + 7 * n);
-      dx = std::max(dx, (a.x - b.x).norm());
-      dr = std::max(dr, log_so3<double>(Eigen::Matrix3d(a.R.transpose() * b.R)).norm());
-    }
-    ex.push_back(dx);
-    er.push_back(dr);
-    ev.push_back(inf_norm(runs[k].final_state.v - runs[k + 1].final_state.v));
-    el.push_back(inf_norm(runs[k].final_state.lambda - runs[k + 1].final_state.lambda));
-    std::printf("h %.1e: |dx| %.3e m, |dR| %.3e rad, |dv| %.3e, |dlambda| %.3e\n", hs[k], dx, dr, ev.back(), el.back());
+    const auto d = testing::spatial_difference(runs[k].final_state, runs[k + 1].final_state);
+    ex.push_back(d.position);
+    er.push_back(d.rotation);
+    ev.push_back(d.velocity);
+    el.push_back(d.multiplier);
+    std::printf("h %.1e: |dx| %.3e m, |dR| %.3e rad, |dv| %.3e, |dlambda| %.3e\n", hs[k], d.position, d.rotation,
+                d.velocity, d.multiplier);
   }
   const std::vector<double> h_fit(hs.begin(), hs.end() - 1);
   std::printf("slopes: position %.2f, rotation %.2f, velocity %.2f, multiplier %.2f\n", fitted_slope(h_fit, ex),

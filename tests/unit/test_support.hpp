@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "alphaflex/app/simulation.hpp"
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
 #include "alphaflex/io/scene.hpp"
 
 namespace alphaflex::testing {
@@ -76,6 +78,25 @@ inline double fitted_slope(const std::vector<double>& h, const std::vector<doubl
     sxy += x * y;
   }
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+/// Differences between two final states of spatial scenes (7 numbers per frame): the largest
+/// position difference (m) and relative rotation angle (rad) over the frames, on the group, and
+/// the largest velocity and multiplier differences.
+struct StateDifference {
+  double position = 0, rotation = 0, velocity = 0, multiplier = 0;
+};
+
+inline StateDifference spatial_difference(const MechanicalState& a, const MechanicalState& b) {
+  StateDifference d;
+  for (Eigen::Index n = 0; n < a.q.size() / 7; ++n) {
+    const Pose<double> pa = pose_of(a.q.data() + 7 * n), pb = pose_of(b.q.data() + 7 * n);
+    d.position = std::max(d.position, (pa.x - pb.x).norm());
+    d.rotation = std::max(d.rotation, log_so3<double>(Eigen::Matrix3d(pa.R.transpose() * pb.R)).norm());
+  }
+  d.velocity = (a.v - b.v).cwiseAbs().maxCoeff();
+  d.multiplier = a.lambda.size() ? (a.lambda - b.lambda).cwiseAbs().maxCoeff() : 0.0;
+  return d;
 }
 
 }  // namespace alphaflex::testing
