@@ -1,8 +1,8 @@
 // sze_strip.geo — flat strip [0, L] × [0, b] in the x-y plane, nx × ny quadrilaterals: the
 // cantilever strips of Sze, Liu & Lo (2004), Sec. 3.1 (end shear, L = 10) and 3.2 (end moment,
 // roll-up, L = 12), both b = 1 and meshed 16 × 1 in the paper. Units: m.
-// Physical groups: surface "strip"; curves "root" (x = 0) and "tip" (x = L); points "root_a"
-// (0, 0), "tip_a" (L, 0) and "tip_b" (L, b).
+// Physical groups: surface "strip"; curves "root" (x = 0), "tip" (x = L), "side_a" (y = 0) and
+// "side_b" (y = b); points "root_a" (0, 0), "tip_a" (L, 0) and "tip_b" (L, b).
 // Parameters: L (10 m), b (1 m), nx (16), ny (1), quads (1: quadrilaterals, 0: triangles).
 DefineConstant[
   L = {10, Name "L"},
@@ -32,6 +32,8 @@ EndIf
 Physical Surface("strip") = {1};
 Physical Curve("root") = {4};
 Physical Curve("tip") = {2};
+Physical Curve("side_a") = {1};
+Physical Curve("side_b") = {3};
 Physical Point("root_a") = {1};
 Physical Point("tip_a") = {2};
 Physical Point("tip_b") = {3};
