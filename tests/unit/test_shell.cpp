@@ -8,7 +8,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <functional>
 #include <random>
@@ -340,7 +339,6 @@ struct ShellModel {
       Eigen::VectorXd rf(nf);
       for (int k = 0; k < nf; ++k) rf[k] = r[fr[static_cast<size_t>(k)]];
       if (r0 < 0) r0 = std::max(rf.norm(), f.norm());
-      if (std::getenv("SHELL_DEBUG")) std::printf("it %d |r| %.3e\n", it, rf.norm());
       if (rf.norm() <= 1e-11 * r0) return it;
       std::vector<Eigen::Triplet<double>> t;
       for (int c = 0; c < K.outerSize(); ++c)
