@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "alphaflex/app/progress.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
@@ -173,6 +174,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
 
   record(s, true);
   long last_written = 0;
+  ProgressReporter progress(opt.verbose && rank == 0, rs.progress_interval, s.t, rs.t_end, nsteps);
 
   for (long n = 1; n <= nsteps; ++n) {
     const double hn = (n == nsteps) ? rs.t_end - s.t : h;
@@ -196,7 +198,9 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     const bool fields = (n % rs.output_every == 0) || n == nsteps;
     record(s, fields);
     if (fields) last_written = n;
+    progress.update(n, s.t, sum.newton_total);
   }
+  progress.finish();
   return finish(s);
 }
 

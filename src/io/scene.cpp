@@ -423,7 +423,12 @@ Scene build(const YAML::Node& root, const std::string& label,
   if (root["description"]) scene.description = rd.text(root["description"], "description");
   read_solver(rd, root["solver"], scene.settings, scene.warnings);
   if (const YAML::Node o = root["output"]) {
-    rd.keys(o, "output", {"every", "hdf5"});
+    rd.keys(o, "output", {"every", "hdf5", "progress"});
+    if (o["progress"]) {
+      scene.settings.progress_interval = rd.number(o["progress"], "output.progress");
+      if (!(scene.settings.progress_interval >= 0.0))
+        rd.fail(o["progress"], "output.progress", "expected a wall-time interval >= 0 (s; 0: no progress lines in batch logs)");
+    }
     if (o["every"]) scene.settings.output_every = rd.integer(o["every"], "output.every", 1);
     if (o["hdf5"]) scene.settings.hdf5 = rd.flag(o["hdf5"], "output.hdf5");
   }

@@ -27,6 +27,7 @@ struct RunSettings {
   double h = 1e-3;      ///< step size (s)
   double t_end = 1.0;   ///< final time (s)
   int output_every = 1; ///< HDF5 output every N steps (sensors: every step)
+  double progress_interval = 30.0;  ///< s of wall time between progress lines in batch logs (0: none)
   bool hdf5 = true;
 };
 

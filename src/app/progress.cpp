@@ -1,0 +1,56 @@
+#include "alphaflex/app/progress.hpp"
+
+#include <mpi.h>
+#include <unistd.h>
+
+#include <cmath>
+
+namespace alphaflex {
+
+namespace {
+constexpr double kTerminalInterval = 0.25;  // s between rewrites of a terminal line
+}
+
+ProgressReporter::ProgressReporter(bool active, double interval, double t0, double t_end, long total_steps, std::FILE* stream)
+    : active_(active), terminal_(active && ::isatty(::fileno(stream)) != 0), interval_(interval), t0_(t0),
+      t_end_(t_end), start_(MPI_Wtime()), total_(total_steps), out_(stream) {
+  last_ = start_;
+  if (!terminal_ && !(interval_ > 0.0)) active_ = false;
+}
+
+ProgressReporter::~ProgressReporter() { finish(); }
+
+std::string ProgressReporter::line(long step, double t, long newton_total, double wall) const {
+  const double done = t_end_ > t0_ ? (t - t0_) / (t_end_ - t0_) : 1.0;
+  const double eta = done > 0.0 ? wall * (1.0 - done) / done : 0.0;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "progress: t = %.6g s (%.0f %%), step %ld of %ld, Newton %.2f per step, wall %.1f s, ETA %.1f s",
+                t, 100.0 * done, step, total_, step > 0 ? static_cast<double>(newton_total) / static_cast<double>(step) : 0.0,
+                wall, eta);
+  return buf;
+}
+
+void ProgressReporter::update(long step, double t, long newton_total) {
+  if (!active_) return;
+  const double now = MPI_Wtime();
+  if (now - last_ < (terminal_ ? kTerminalInterval : interval_)) return;
+  last_ = now;
+  const std::string text = line(step, t, newton_total, now - start_);
+  if (terminal_) {
+    std::fprintf(out_, "\r%s\033[K", text.c_str());
+    dirty_ = true;
+  } else {
+    std::fprintf(out_, "%s\n", text.c_str());
+  }
+  std::fflush(out_);
+}
+
+void ProgressReporter::finish() {
+  if (dirty_) {
+    std::fprintf(out_, "\r\033[K");
+    std::fflush(out_);
+    dirty_ = false;
+  }
+}
+
+}  // namespace alphaflex
