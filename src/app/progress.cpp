@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <utility>
 
 namespace alphaflex {
 
@@ -11,9 +12,10 @@ namespace {
 constexpr double kTerminalInterval = 0.25;  // s between rewrites of a terminal line
 }
 
-ProgressReporter::ProgressReporter(bool active, double interval, double t0, double t_end, long total_steps, std::FILE* stream)
+ProgressReporter::ProgressReporter(bool active, double interval, double t0, double t_end, long total_steps, std::FILE* stream,
+                                   std::string what, std::string unit)
     : active_(active), terminal_(active && ::isatty(::fileno(stream)) != 0), interval_(interval), t0_(t0),
-      t_end_(t_end), start_(MPI_Wtime()), total_(total_steps), out_(stream) {
+      t_end_(t_end), start_(MPI_Wtime()), total_(total_steps), out_(stream), what_(std::move(what)), unit_(std::move(unit)) {
   last_ = start_;
   if (!terminal_ && !(interval_ > 0.0)) active_ = false;
 }
@@ -23,11 +25,14 @@ ProgressReporter::~ProgressReporter() { finish(); }
 std::string ProgressReporter::line(long step, double t, long newton_total, double wall) const {
   const double done = t_end_ > t0_ ? (t - t0_) / (t_end_ - t0_) : 1.0;
   const double eta = done > 0.0 ? wall * (1.0 - done) / done : 0.0;
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "progress: t = %.6g s (%.0f %%), step %ld of %ld, Newton %.2f per step, wall %.1f s, ETA %.1f s",
-                t, 100.0 * done, step, total_, step > 0 ? static_cast<double>(newton_total) / static_cast<double>(step) : 0.0,
-                wall, eta);
-  return buf;
+  char head[160], newton[64] = "", tail[96];
+  std::snprintf(head, sizeof head, "progress: %s = %.6g%s (%.0f %%), step %ld of %ld", what_.c_str(), t, unit_.c_str(),
+                100.0 * done, step, total_);
+  if (newton_total >= 0)
+    std::snprintf(newton, sizeof newton, ", Newton %.2f per step",
+                  step > 0 ? static_cast<double>(newton_total) / static_cast<double>(step) : 0.0);
+  std::snprintf(tail, sizeof tail, ", wall %.1f s, ETA %.1f s", wall, eta);
+  return std::string(head) + newton + tail;
 }
 
 void ProgressReporter::update(long step, double t, long newton_total) {

@@ -101,10 +101,14 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     // pre-loaded equilibrium a dynamic run starts from.
     const bool is_static = rs.analysis == Analysis::Static;
     QuasiStatic qs(system, solver, rs.statics);
+    ProgressReporter progress(opt.verbose && rank == 0, rs.progress_interval, 0.0, rs.load_factor, rs.statics.steps, stderr,
+                              "load factor", "");
+    long load_steps = 0;
     auto at_load = [&](const MechanicalState& st, double lf) {
       MechanicalState c = st;
       c.t = lf;  // the CSV's first column is the load factor in a static analysis
       record(c, true);
+      if (lf > 0.0) progress.update(++load_steps, lf, -1);
     };
     if (is_static) at_load(s, 0.0);
     StaticReport rep;
@@ -119,6 +123,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
       if (writer) writer->finish();
       throw InputError(scene.file + ": " + e.what());
     }
+    progress.finish();
     sum.static_steps = rep.load_steps;
     sum.static_cuts = rep.cuts;
     sum.newton_total += rep.iterations;

@@ -11,13 +11,16 @@ namespace alphaflex {
 class ProgressReporter {
  public:
   /// `active`: rank 0 and a verbose run; `interval` (s): plain lines apart (0: none); `t0`, `t_end`:
-  /// the simulated interval; `total_steps`; `stream`: stderr (stdout keeps the summary).
-  ProgressReporter(bool active, double interval, double t0, double t_end, long total_steps, std::FILE* stream = stderr);
+  /// the simulated interval; `total_steps`; `stream`: stderr (stdout keeps the summary); `what`:
+  /// the name of the progressing quantity with its unit ("t", " s"; a static analysis: the load
+  /// factor, "").
+  ProgressReporter(bool active, double interval, double t0, double t_end, long total_steps, std::FILE* stream = stderr,
+                   std::string what = "t", std::string unit = " s");
   ~ProgressReporter();
   ProgressReporter(const ProgressReporter&) = delete;
   ProgressReporter& operator=(const ProgressReporter&) = delete;
 
-  /// After step `step` (1-based) reached time t with `newton_total` iterations so far.
+  /// After step `step` (1-based) reached time t with `newton_total` iterations so far (< 0: not known).
   void update(long step, double t, long newton_total);
   /// Clears a terminal line (before the summary).
   void finish();
@@ -30,6 +33,7 @@ class ProgressReporter {
   double interval_, t0_, t_end_, start_, last_ = 0.0;
   long total_;
   std::FILE* out_;
+  std::string what_, unit_;
   bool dirty_ = false;
 };
 
