@@ -29,13 +29,14 @@ using scene_detail::BodyRef;
 void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<std::string>& warnings) {
   if (!s) return;
   rd.keys(s, "solver", {"analysis", "scheme", "rho_inf", "alpha_m", "alpha_f", "beta", "gamma", "h", "t_end", "scaling",
-                        "consistent_start", "newton", "static", "initial_static"});
+                        "consistent_start", "newton", "static", "initial_static", "step_cuts"});
   if (s["analysis"]) {
     const std::string a = rd.text(s["analysis"], "solver.analysis");
     if (a == "static") rs.analysis = Analysis::Static;
     else if (a != "dynamic") rd.fail(s["analysis"], "solver.analysis", "expected dynamic or static, got '" + a + "'");
   }
   if (s["initial_static"]) rs.initial_static = rd.flag(s["initial_static"], "solver.initial_static");
+  if (s["step_cuts"]) rs.step_cuts = rd.integer(s["step_cuts"], "solver.step_cuts", 0, 30);
   if (const YAML::Node st = s["static"]) {
     rd.keys(st, "solver.static", {"steps", "max_cuts"});
     if (st["steps"]) rs.statics.steps = rd.integer(st["steps"], "solver.static.steps", 1, 1000000);

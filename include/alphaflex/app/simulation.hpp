@@ -20,6 +20,8 @@ struct RunOptions {
 struct RunSummary {
   int steps = 0;              ///< time steps (load steps in a static analysis)
   int static_steps = 0, static_cuts = 0;  ///< load steps and step cuts of the quasi-static solve
+  int step_cuts = 0;          ///< halvings of h after failed dynamic steps (solver.step_cuts)
+  double h_min = 0.0;         ///< smallest step taken (s)
   long newton_total = 0;
   int newton_max = 0;
   int unknowns = 0, coordinates = 0, multipliers = 0;
