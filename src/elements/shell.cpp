@@ -55,6 +55,7 @@ Eigen::Vector2d node_coordinates(int n, int I) {
 struct Quadrature {
   std::vector<Eigen::Vector2d> points;
   std::vector<double> weights;
+  std::vector<Shape> shapes;  ///< shape functions at the points (built once: no work per evaluation)
 };
 
 const Quadrature& quadrature(int n) {
@@ -65,6 +66,7 @@ const Quadrature& quadrature(int n) {
       for (double x : {-g, g}) {
         q.points.emplace_back(x, e);
         q.weights.push_back(1.0);
+        q.shapes.push_back(shape(4, x, e));
       }
     return q;
   }();
@@ -72,6 +74,7 @@ const Quadrature& quadrature(int n) {
     Quadrature q;
     q.points = {Eigen::Vector2d(1.0 / 6, 1.0 / 6), Eigen::Vector2d(2.0 / 3, 1.0 / 6), Eigen::Vector2d(1.0 / 6, 2.0 / 3)};
     q.weights = {1.0 / 6, 1.0 / 6, 1.0 / 6};
+    for (const auto& p : q.points) q.shapes.push_back(shape(3, p[0], p[1]));
     return q;
   }();
   return n == 4 ? quad : tri;
@@ -684,7 +687,7 @@ void ShellPressure::evaluate(const LocalState& s, LocalResidual& out, bool tange
   }
   const Quadrature& quad = quadrature(n_);
   for (size_t q = 0; q < quad.points.size(); ++q) {
-    const Shape sh = shape(n_, quad.points[q][0], quad.points[q][1]);
+    const Shape& sh = quad.shapes[q];
     Eigen::Vector3d a1 = Eigen::Vector3d::Zero(), a2 = Eigen::Vector3d::Zero();
     for (int J = 0; J < n_; ++J) {
       const Eigen::Vector3d x(s.q[7 * J], s.q[7 * J + 1], s.q[7 * J + 2]);

@@ -3,6 +3,7 @@
 #include <petscsys.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -97,6 +98,32 @@ inline StateDifference spatial_difference(const MechanicalState& a, const Mechan
   d.velocity = (a.v - b.v).cwiseAbs().maxCoeff();
   d.multiplier = a.lambda.size() ? (a.lambda - b.lambda).cwiseAbs().maxCoeff() : 0.0;
   return d;
+}
+
+/// Order of convergence in time on the group from runs at decreasing step sizes hs: the differences
+/// of successive runs' final states (a Cauchy sequence, so the slope of the error itself), fitted
+/// against h for positions, rotations, velocities and multipliers; `label` prefixes the printout.
+struct GroupOrders {
+  double position = 0, rotation = 0, velocity = 0, multiplier = 0;
+};
+
+inline GroupOrders successive_difference_orders(const std::vector<double>& hs, const std::vector<RunSummary>& runs,
+                                                const std::string& label) {
+  std::vector<double> ex, er, ev, el;
+  for (size_t k = 0; k + 1 < runs.size(); ++k) {
+    const StateDifference d = spatial_difference(runs[k].final_state, runs[k + 1].final_state);
+    ex.push_back(d.position);
+    er.push_back(d.rotation);
+    ev.push_back(d.velocity);
+    el.push_back(d.multiplier);
+    std::printf("%sh %.2e: |dx| %.3e m, |dR| %.3e rad, |dv| %.3e, |dlambda| %.3e\n", label.c_str(), hs[k], d.position,
+                d.rotation, d.velocity, d.multiplier);
+  }
+  const std::vector<double> h_fit(hs.begin(), hs.end() - 1);
+  const GroupOrders o{fitted_slope(h_fit, ex), fitted_slope(h_fit, er), fitted_slope(h_fit, ev), fitted_slope(h_fit, el)};
+  std::printf("%sslopes: position %.2f, rotation %.2f, velocity %.2f, multiplier %.2f\n", label.c_str(), o.position,
+              o.rotation, o.velocity, o.multiplier);
+  return o;
 }
 
 }  // namespace alphaflex::testing
