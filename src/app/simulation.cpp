@@ -14,15 +14,20 @@
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
 #include "alphaflex/io/results_writer.hpp"
-#include "alphaflex/partition/dof_map.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
 
 namespace alphaflex {
 namespace {
 
-std::vector<double> sensor_values(const Model& m, const MechanicalState& s) {
-  std::vector<double> v;
-  for (const auto& sn : m.sensors()) v.push_back(sn.evaluate(m, s));
+/// Every sensor's value in scene order, on every rank: each is evaluated by the rank that owns
+/// it (on its local state) and the others add zero.
+std::vector<double> sensor_values(const Subdomain& sub, const MechanicalState& s) {
+  std::vector<double> v(sub.global_model().sensors().size(), 0.0);
+  const Model& m = sub.model();
+  for (size_t k = 0; k < m.sensors().size(); ++k)
+    v[static_cast<size_t>(sub.global_sensor(static_cast<int>(k)))] = m.sensors()[k].evaluate(m, s);
+  sub.sum(v);
   return v;
 }
 
@@ -35,37 +40,27 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   const Model& model = *scene.model;
   const RunSettings& rs = scene.settings;
 
-  DofMap map(model, comm);
-  SaddlePointSystem system(model, map, comm);
+  // This rank's part of the model (METIS partition, owned and ghost nodes): the state below is
+  // local to it.
+  Subdomain sub(model, comm);
+  SaddlePointSystem system(sub);
   LinearSolver solver(comm);
   GeneralizedAlpha integrator(system, solver, rs.parameters, rs.integrator);
 
   RunSummary sum;
   sum.coordinates = model.num_dofs();
   sum.multipliers = model.num_multipliers();
-  sum.unknowns = map.global_size();
+  sum.unknowns = sub.dof_map().global_size();
   for (const auto& sn : model.sensors()) sum.sensor_names.push_back(sn.name);
 
-  // Output files first, and agree on success: only rank 0 writes, so a failure there must not
-  // leave the other ranks waiting in the first collective call.
+  // Output files first (collective: the ranks agree on success inside, so a failure on one rank
+  // does not leave the others waiting).
   std::unique_ptr<ResultsWriter> writer;
-  int ok = 1;
-  std::string err;
-  if (opt.write_results) {
-    try {
-      writer = std::make_unique<ResultsWriter>(model, opt.outdir, scene.name, rs.hdf5, rank);
-    } catch (const std::exception& e) {
-      ok = 0;
-      err = e.what();
-    }
-  }
-  int all_ok = 1;
-  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, comm);
-  if (!all_ok) throw InputError(err.empty() ? "cannot create the output files (see rank 0)" : err);
+  if (opt.write_results) writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name, rs.hdf5);
 
   std::vector<double> values;
   auto record = [&](const MechanicalState& st, bool fields) {
-    values = sensor_values(model, st);
+    values = sensor_values(sub, st);
     if (opt.keep_history) {
       sum.times_out.push_back(st.t);
       sum.sensor_history.push_back(values);
@@ -87,7 +82,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
         sum.xdmf = writer->xdmf_path();
       }
     }
-    sum.final_state = final_state;
+    sum.final_state = sub.gather(final_state);  // model order, every rank (O(model), once)
     sum.final_sensors = values;
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
@@ -95,7 +90,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     sum.wall = MPI_Wtime() - wall0;
     return sum;
   };
-  MechanicalState s = model.initial_state();
+  MechanicalState s = sub.model().initial_state();
   if (rs.analysis == Analysis::Static || rs.initial_static) {
     // Quasi-static load stepping (integrators/quasi_static.hpp): the whole analysis, or the
     // pre-loaded equilibrium a dynamic run starts from.
@@ -137,8 +132,8 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     }
   }
   if (!rs.integrator.consistent_start) {
-    const double viol = constraint_violation(model, s);
-    if (viol > 1e-9 * std::max(1.0, s.q.cwiseAbs().maxCoeff()))
+    const double viol = constraint_violation(sub, s);
+    if (viol > 1e-9 * std::max(1.0, sub.max_abs(s.q)))
       sum.warnings.push_back("solver.consistent_start is off and the initial positions violate the joints by up to " +
                              std::to_string(viol) + ": the first steps' multipliers will be far off");
   }
@@ -163,8 +158,8 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     // amplify by β' ~ 1/(βh²). Warn when that floor is no longer small against q̈ itself.
     const auto& p = rs.parameters;
     const double beta_p = (1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f));
-    const double floor = std::numeric_limits<double>::epsilon() * std::max(s.q.cwiseAbs().maxCoeff(), 1e-300) * beta_p;
-    const double acc = s.qdd.size() ? s.qdd.cwiseAbs().maxCoeff() : 0.0;
+    const double floor = std::numeric_limits<double>::epsilon() * std::max(sub.max_abs(s.q), 1e-300) * beta_p;
+    const double acc = sub.max_abs(s.qdd);
     if (floor > 1e-3 * acc) {
       std::ostringstream os;
       os.precision(3);

@@ -177,4 +177,19 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
   return r;
 }
 
+std::vector<RedundantEquation> find_redundant_constraints(const Subdomain& sub, const MechanicalState& local,
+                                                          double tol) {
+  if (sub.size() == 1) return find_redundant_constraints(sub.model(), local, tol);
+  return find_redundant_constraints(sub.global_model(), sub.gather(local), tol);
+}
+
+double constraint_violation(const Subdomain& sub, const MechanicalState& local) {
+  return sub.max_abs(Eigen::VectorXd::Constant(1, constraint_violation(sub.model(), local)));
+}
+
+std::string diagnose_singular_system(const Subdomain& sub, const MechanicalState& local) {
+  if (sub.size() == 1) return diagnose_singular_system(sub.model(), local);
+  return diagnose_singular_system(sub.global_model(), sub.gather(local));
+}
+
 }  // namespace alphaflex

@@ -28,6 +28,10 @@ struct NewtonRecord {
   double correction_q = 0.0, correction_lambda = 0.0;  ///< ‖Δq‖∞, ‖Δλ‖∞
 };
 
+/// The record of one Newton iteration from the local residual and corrections, with norms over
+/// all ranks (collective): ‖r_q‖₂ over owned coordinates, ‖Φ‖₂, ‖Δq‖∞, ‖Δλ‖∞.
+NewtonRecord newton_record(const Subdomain& sub, const ModelVector& residual, const Eigen::VectorXd& dq,
+                           const Eigen::VectorXd& dlambda);
 /// The Newton stopping rule on the last correction (generalized_alpha.hpp explains why):
 /// ‖Δq‖∞ ≤ atol + rtol‖q‖∞ and ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞, the λ test waived once Δq is at
 /// round-off (≤ 10⁴ ε ‖q‖) after the first iteration.
