@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
     alphaflex::Scene scene;
     int ok = 1;
     try {
-      scene = alphaflex::read_scene(cl.scene, cl.overrides);
+      scene = alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD);
     } catch (const alphaflex::InputError& e) {
       ok = 0;
       message = e.what();

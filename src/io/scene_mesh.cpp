@@ -73,7 +73,7 @@ MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
   }
   std::ostringstream ctx;
   ctx << rd.file() << ":" << (fn.Mark().line + 1) << ": mesh.file";
-  return read_mesh(path.string(), opt, ctx.str());
+  return rd.mesh(path.string(), opt, ctx.str());
 }
 
 /// The line block named by a beam's `group`, or a clear error listing the mesh's curve groups.

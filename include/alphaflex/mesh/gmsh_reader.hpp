@@ -83,4 +83,8 @@ struct MeshData {
 /// same content on every rank: meshes/README.md).
 MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context);
 
+/// MeshData as bytes and back (one rank reads the mesh with gmsh and sends it to the others).
+std::vector<char> pack(const MeshData& mesh);
+MeshData unpack(const std::vector<char>& bytes);
+
 }  // namespace alphaflex
