@@ -1,6 +1,7 @@
 #include "alphaflex/app/simulation.hpp"
 
 #include <petscsys.h>
+#include <sys/resource.h>
 
 #include <cmath>
 #include <limits>
@@ -51,6 +52,14 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   sum.coordinates = model.num_dofs();
   sum.multipliers = model.num_multipliers();
   sum.unknowns = sub.dof_map().global_size();
+  sum.ranks = sub.size();
+  sum.edge_cut = sub.dof_map().edge_cut();
+  sum.unknowns_per_rank = sub.dof_map().unknowns_per_rank();
+  sum.ghosts_per_rank.assign(static_cast<size_t>(sub.size()), 0);
+  {
+    const int ghosts = sub.num_ghost_nodes();
+    MPI_Allgather(&ghosts, 1, MPI_INT, sum.ghosts_per_rank.data(), 1, MPI_INT, comm);
+  }
   for (const auto& sn : model.sensors()) sum.sensor_names.push_back(sn.name);
 
   // Output files first (collective: the ranks agree on success inside, so a failure on one rank
@@ -86,6 +95,16 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     sum.final_sensors = values;
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
+    sum.mumps = solver.statistics();
+    // Peak resident memory of every rank (getrusage: the whole process, in KB on Linux).
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    double mb[2] = {static_cast<double>(ru.ru_maxrss) / 1024.0, 0.0}, tot[2] = {0.0, 0.0};
+    mb[1] = mb[0];
+    MPI_Allreduce(&mb[0], &tot[0], 1, MPI_DOUBLE, MPI_SUM, comm);
+    MPI_Allreduce(&mb[1], &tot[1], 1, MPI_DOUBLE, MPI_MAX, comm);
+    sum.peak_memory_mb = tot[0];
+    sum.peak_memory_max_mb = tot[1];
     sum.symbolic_analyses = solver.symbolic_count();
     sum.wall = MPI_Wtime() - wall0;
     return sum;
@@ -276,9 +295,30 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << " (h = " << scene.settings.h << " s, t_end = " << scene.settings.t_end << " s)\n";
   if (scene.settings.analysis != Analysis::Static && s.static_steps > 0)
     os << "  initial statics     " << s.static_steps << " load steps, " << s.static_cuts << " step cuts\n";
+  if (s.ranks > 1) {
+    // Partition quality (METIS): unknowns each rank owns, its ghost nodes, the couplings cut.
+    int lo = s.unknowns_per_rank.empty() ? 0 : s.unknowns_per_rank[0], hi = lo;
+    for (int u : s.unknowns_per_rank) {
+      lo = std::min(lo, u);
+      hi = std::max(hi, u);
+    }
+    const double avg = static_cast<double>(s.unknowns) / s.ranks;
+    os << "  partition           METIS, " << s.ranks << " ranks, edge cut " << s.edge_cut << ", load imbalance "
+       << std::fixed << std::setprecision(3) << (avg > 0 ? hi / avg : 1.0) << std::defaultfloat << std::setprecision(4) << " (largest / mean unknowns per rank)\n"
+       << "    rank      unknowns   ghost nodes\n";
+    for (int r = 0; r < s.ranks; ++r)
+      os << "    " << std::setw(4) << r << std::setw(14) << s.unknowns_per_rank[static_cast<size_t>(r)] << std::setw(14)
+         << s.ghosts_per_rank[static_cast<size_t>(r)] << "\n";
+  }
   os
      << "  Newton iterations   total " << s.newton_total << ", mean " << mean << " per step, max " << s.newton_max << "\n"
-     << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n"
+     << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n";
+  if (s.mumps.mumps)
+    os << "  MUMPS               " << s.mumps.entries << " entries in the factors, " << s.mumps.flops
+       << " flop per factorization, " << s.mumps.memory_sum_mb << " MB in all (" << s.mumps.memory_max_mb
+       << " MB on the largest rank)\n";
+  os << "  memory              peak " << std::setprecision(4) << s.peak_memory_mb << " MB resident in all ranks ("
+     << s.peak_memory_max_mb << " MB largest rank)\n"
      << std::fixed << std::setprecision(3)
      << "  wall time           " << s.wall << " s (" << (s.steps ? 1e6 * s.wall / s.steps : 0.0) << " us per step)\n"
      << "    assembly          " << t.assembly << " s (" << std::setprecision(1) << pct(t.assembly) << " %)\n" << std::setprecision(3)
