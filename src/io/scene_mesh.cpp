@@ -96,6 +96,12 @@ void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, 
     if (node_of[static_cast<size_t>(id)] < 0)
       rd.fail(mn["file"], "mesh.file",
               "named point '" + pname + "' is on none of the beams' or shells' groups (an unconnected node); put it on a beam's curve or a shell's surface, or remove it");
+  for (const auto& [pname, ids] : mesh.point_groups)
+    for (int id : ids)
+      if (node_of[static_cast<size_t>(id)] < 0)
+        rd.fail(mn["file"], "mesh.file",
+                "point group '" + pname + "' holds mesh node " + std::to_string(mesh.node_tags[static_cast<size_t>(id)]) +
+                    ", which is on none of the beams' or shells' groups (an unconnected node); every point of a point group must be on a beam's curve or a shell's surface");
 }
 
 
@@ -257,6 +263,11 @@ void keep_groups(SceneBuilder& sb, const MeshData& mesh, const std::vector<int>&
     MeshGroup& g = sb.mesh_groups[name];
     g.dim = 0;
     add_nodes(g, {m});
+  }
+  for (const auto& [name, ids] : mesh.point_groups) {
+    MeshGroup& g = sb.mesh_groups[name];
+    g.dim = 0;
+    add_nodes(g, ids);
   }
 }
 

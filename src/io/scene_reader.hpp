@@ -306,6 +306,9 @@ class SceneBuilder {
       return -1;
     }
     const int id = model_.find_node(name);
+    if (id < 0 && mesh_groups.count(name))
+      rd_.fail(n, path + "." + key, "'" + name + "' is a mesh group of " + std::to_string(mesh_groups.at(name).nodes.size()) +
+                                        " nodes, not one body: give it as `group` (a joint or load at each of its nodes)");
     if (id < 0) rd_.fail(n, path + "." + key, "no body named '" + name + "'" + known_bodies());
     return id;
   }

@@ -74,6 +74,11 @@ std::vector<char> pack(const MeshData& m) {
     w.text(name);
     w.pod(id);
   }
+  w.pod(m.point_groups.size());
+  for (const auto& [name, ids] : m.point_groups) {
+    w.text(name);
+    w.pods(ids.data(), ids.size());
+  }
   w.pod(m.parameters.size());
   for (const auto& [name, v] : m.parameters) {
     w.text(name);
@@ -108,6 +113,10 @@ MeshData unpack(const std::vector<char>& bytes) {
   for (size_t k = r.pod<size_t>(); k > 0; --k) {
     const std::string name = r.text();
     m.named_points[name] = r.pod<int>();
+  }
+  for (size_t k = r.pod<size_t>(); k > 0; --k) {
+    const std::string name = r.text();
+    m.point_groups[name] = r.pods<int>();
   }
   for (size_t k = r.pod<size_t>(); k > 0; --k) {
     const std::string name = r.text();
