@@ -43,6 +43,9 @@ std::string format_newton_history(const std::vector<NewtonRecord>& history, bool
 /// Wall time spent by phase (seconds, this rank).
 struct PhaseTimes {
   double assembly = 0.0, factorization = 0.0, solve = 0.0, output = 0.0;
+  /// Before the first step: partition, subdomain, preallocation, output files, the check for
+  /// redundant joints (the consistent start's solves count as assembly, factorization, solve).
+  double setup = 0.0;
 };
 
 class LinearizedSystem {
