@@ -4,6 +4,7 @@
 // shells meet, named mesh points become nodes that joints, loads and sensors refer to by name, and
 // every physical group is kept (as model nodes) for joints and loads given on a group.
 #include <filesystem>
+#include <unordered_set>
 
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
@@ -234,12 +235,16 @@ void read_shells(Reader& rd, const YAML::Node& sl, const MeshData& mesh, Model& 
 
 /// Every physical group of the mesh in terms of model nodes (−1 for nodes nothing uses).
 void keep_groups(SceneBuilder& sb, const MeshData& mesh, const std::vector<int>& node_of) {
+  // Which model nodes each group holds already (a set per group: groups of 10⁵ nodes are read in
+  // linear time).
+  std::map<const MeshGroup*, std::unordered_set<int>> seen;
   auto add_nodes = [&](MeshGroup& g, const std::vector<int>& mesh_nodes) {
     std::vector<int> el;
+    std::unordered_set<int>& in = seen[&g];
     for (int m : mesh_nodes) {
       const int n = node_of[static_cast<size_t>(m)];
       el.push_back(n);
-      if (std::find(g.nodes.begin(), g.nodes.end(), n) == g.nodes.end() || n < 0) {
+      if (n < 0 || in.insert(n).second) {
         g.nodes.push_back(n);
         g.points.push_back(mesh.points[static_cast<size_t>(m)]);
       }

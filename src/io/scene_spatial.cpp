@@ -224,7 +224,9 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
     for (size_t k = 0; k < pairs.size(); ++k) {
       const auto [b1, b2] = pairs[k];
       const std::string jname = group ? name + "[" + std::to_string(k) + "]" : name;
-      if (group && model.find_constraint(jname) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + jname + "' exists already");
+      if (group && k == 0)  // name[0], name[1], …: checked once per group, not once per joint
+        for (const auto& c : model.constraints())
+          if (c->name().rfind(name + "[", 0) == 0) rd.fail(j["name"], path + ".name", "a joint named '" + c->name() + "' exists already");
       if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
       const Pose<double> p1 = initial_pose(model, b1);
       const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)
