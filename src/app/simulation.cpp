@@ -319,7 +319,9 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
        << " flop per factorization, " << s.mumps.memory_sum_mb << " MB in all (" << s.mumps.memory_max_mb
        << " MB on the largest rank)\n";
   os << "  memory              peak " << std::setprecision(4) << s.peak_memory_mb << " MB resident in all ranks ("
-     << s.peak_memory_max_mb << " MB largest rank)\n"
+     << s.peak_memory_max_mb << " MB largest rank)";
+  if (s.scene_memory_mb >= 0.0) os << ", " << s.scene_memory_mb << " MB of it per rank for the scene's whole model";
+  os << "\n"
      << std::fixed << std::setprecision(3)
      << "  wall time           " << s.wall << " s (" << (s.steps ? 1e6 * s.wall / s.steps : 0.0) << " us per step)\n"
      << "    setup             " << t.setup << " s (" << std::setprecision(1) << pct(t.setup) << " %)\n" << std::setprecision(3)

@@ -42,6 +42,9 @@ struct RunSummary {
   std::vector<int> unknowns_per_rank, ghosts_per_rank;  ///< owned unknowns, ghost nodes
   FactorStatistics mumps;                  ///< of the last factorization
   double peak_memory_mb = 0.0, peak_memory_max_mb = 0.0;  ///< peak resident set: sum, largest rank
+  /// Resident memory that reading the scene (and its mesh) and building its whole model took on
+  /// the largest rank: the part every rank holds whatever their number (set by the command).
+  double scene_memory_mb = -1.0;
   std::string h5, xdmf, csv;
 };
 
