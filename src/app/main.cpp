@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/error.hpp"
 
@@ -100,6 +101,12 @@ int main(int argc, char** argv) {
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  // The communicator on which the ranks agree how the run ends (app/exit_agreement.hpp), and how
+  // long a rank that caught an error waits for the others before it ends the job.
+  MPI_Comm exit_comm;
+  MPI_Comm_dup(PETSC_COMM_WORLD, &exit_comm);
+  PetscReal exit_timeout = 5.0;
+  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-af_exit_timeout", &exit_timeout, nullptr));
 
   int code = 0;
   std::string message;
@@ -131,6 +138,8 @@ int main(int argc, char** argv) {
     }
     alphaflex::RunOptions opt;
     opt.outdir = cl.outdir;
+    opt.exit_comm = exit_comm;
+    opt.exit_timeout = exit_timeout;
     double description_mb = resident_mb() - before_mb, largest_mb = 0.0;
     MPI_Allreduce(&description_mb, &largest_mb, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
     alphaflex::RunSummary sum = alphaflex::run_simulation(scene, opt, PETSC_COMM_WORLD);
@@ -146,11 +155,13 @@ int main(int argc, char** argv) {
     code = 3;
     message = e.what();
   } catch (const std::exception& e) {
-    // Not known to be collective: make sure no other rank is left waiting.
-    std::cerr << "alphaflex: internal error on rank " << rank << ": " << e.what() << std::endl;
-    MPI_Abort(PETSC_COMM_WORLD, 4);
+    code = 4;
+    message = std::string("internal error on rank ") + std::to_string(rank) + ": " + e.what();
   }
-  if (code != 0 && rank == 0) std::cerr << "alphaflex: error: " << message << std::endl;
+  // Every rank ends alike: an error the ranks agreed on ends them all cleanly with one message; an
+  // error only this rank saw ends the job (the others wait in a collective call it has left).
+  code = alphaflex::end_run(exit_comm, code, message, exit_timeout);
+  MPI_Comm_free(&exit_comm);
   PetscCall(PetscFinalize());
   return code;
 }

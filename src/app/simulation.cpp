@@ -9,10 +9,12 @@
 #include <iostream>
 #include <sstream>
 
+#include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/progress.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/fault_injection.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/partition/subdomain.hpp"
@@ -32,9 +34,36 @@ std::vector<double> sensor_values(const Subdomain& sub, const MechanicalState& s
   return v;
 }
 
+/// The objects of a run whose destructors are collective (PETSc matrices and vectors, MUMPS, the
+/// parallel HDF5 file): they live outside the run's body, so that after an error they are destroyed
+/// only once the ranks know that they all failed (run_simulation). Members go in reverse order.
+struct RunObjects {
+  std::unique_ptr<Subdomain> sub;
+  std::unique_ptr<SaddlePointSystem> system;
+  std::unique_ptr<LinearSolver> solver;
+  std::unique_ptr<GeneralizedAlpha> integrator;
+  std::unique_ptr<ResultsWriter> writer;
+};
+
+RunSummary run_body(RunObjects& objects, Scene& scene, const RunOptions& opt, MPI_Comm comm);
+
 }  // namespace
 
 RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
+  RunObjects objects;
+  try {
+    return run_body(objects, scene, opt, comm);
+  } catch (const std::exception& e) {
+    // An error one rank only saw ends the job here, before a collective destructor waits for ranks
+    // that are elsewhere; one that every rank saw is rethrown and ends the run cleanly.
+    fail_together(opt.exit_comm, exit_code_of(e), e.what(), opt.exit_timeout);
+    throw;
+  }
+}
+
+namespace {
+
+RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   const double wall0 = MPI_Wtime();
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -43,10 +72,16 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
 
   // This rank's part of the model (METIS partition, owned and ghost nodes): the state below is
   // local to it.
-  Subdomain sub(model, comm);
-  SaddlePointSystem system(sub);
-  LinearSolver solver(comm);
-  GeneralizedAlpha integrator(system, solver, rs.parameters, rs.integrator);
+  o.sub = std::make_unique<Subdomain>(model, comm);
+  Subdomain& sub = *o.sub;
+  // Tests of error handling: a bad value that one rank only finds (it ends the job, not a hang).
+  if (fault_injected("input")) throw InputError(scene.file + ": injected fault (-af_inject_fault input): a bad value found on this rank only");
+  o.system = std::make_unique<SaddlePointSystem>(sub);
+  SaddlePointSystem& system = *o.system;
+  o.solver = std::make_unique<LinearSolver>(comm);
+  LinearSolver& solver = *o.solver;
+  o.integrator = std::make_unique<GeneralizedAlpha>(system, solver, rs.parameters, rs.integrator);
+  GeneralizedAlpha& integrator = *o.integrator;
 
   RunSummary sum;
   sum.coordinates = model.num_dofs();
@@ -64,7 +99,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
 
   // Output files first (collective: the ranks agree on success inside, so a failure on one rank
   // does not leave the others waiting).
-  std::unique_ptr<ResultsWriter> writer;
+  std::unique_ptr<ResultsWriter>& writer = o.writer;
   if (opt.write_results) writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name, rs.hdf5);
 
   integrator.times().setup += MPI_Wtime() - wall0;  // partition, subdomain, preallocation, files
@@ -218,6 +253,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
       } catch (const SolverError& e) {
         stop(n, e);
       }
+      if (fault_injected("internal")) throw std::runtime_error("injected fault (-af_inject_fault internal) at step " + std::to_string(n));
       ++sum.steps;
       sum.newton_total += rep.iterations;
       sum.newton_max = std::max(sum.newton_max, rep.iterations);
@@ -275,6 +311,8 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   progress.finish();
   return finish(s);
 }
+
+}  // namespace
 
 std::string format_summary(const Scene& scene, const RunSummary& s) {
   std::ostringstream os;

@@ -9,6 +9,7 @@
 
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/fault_injection.hpp"
 
 namespace alphaflex {
 GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solver, AlphaParameters params,
@@ -133,7 +134,8 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
   bool converged = false;
   for (int it = 1; it <= nt.max_iterations && !converged; ++it) {
     const ModelVector x = lin_.solve(n1, c, ConstraintRows::Dynamic, &r);
-    const Eigen::VectorXd dq = -x.dofs;
+    Eigen::VectorXd dq = -x.dofs;
+    if (fault_injected("newton") && dq.size()) dq[0] = std::numeric_limits<double>::quiet_NaN();  // tests only
     const Eigen::VectorXd dl = -c.multiplier_scale * x.multipliers;
     move(dq);
     n1.v += gamma_p * dq;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/fault_injection.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
 
 namespace alphaflex {
@@ -225,12 +226,17 @@ std::pair<hid_t, hid_t> selections(const std::vector<unsigned long long>& start,
 
 }  // namespace
 
+// A failed create or write is remembered (the first one) rather than thrown: the other ranks are in
+// the same collective calls, so every rank goes on to the end of the output step, where the ranks
+// agree on the outcome (write_fields).
 void ResultsWriter::write_rows(long long loc, const char* name, const Rows& rows, int cols, const double* data) {
   const auto [file_space, mem_space] = selections(rows.start, rows.count, rows.total, rows.mine, cols);
   const hid_t set = H5Dcreate2(loc, name, H5T_IEEE_F64LE, file_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (set < 0) throw std::runtime_error(std::string("HDF5: cannot create dataset ") + name);
-  if (rows.total > 0) H5Dwrite(set, H5T_NATIVE_DOUBLE, mem_space, file_space, transfer_, data);
-  H5Dclose(set);
+  if (set < 0 && error_.empty()) error_ = std::string("cannot create the dataset ") + name + " in " + h5_path_;
+  if (set >= 0 && rows.total > 0 && H5Dwrite(set, H5T_NATIVE_DOUBLE, mem_space, file_space, transfer_, data) < 0 &&
+      error_.empty())
+    error_ = std::string("cannot write the dataset ") + name + " of " + h5_path_ + " (file system full or gone?)";
+  if (set >= 0) H5Dclose(set);
   H5Sclose(mem_space);
   H5Sclose(file_space);
 }
@@ -238,9 +244,11 @@ void ResultsWriter::write_rows(long long loc, const char* name, const Rows& rows
 void ResultsWriter::write_int_rows(long long loc, const char* name, const Rows& rows, const int* data) {
   const auto [file_space, mem_space] = selections(rows.start, rows.count, rows.total, rows.mine, 1);
   const hid_t set = H5Dcreate2(loc, name, H5T_STD_I32LE, file_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (set < 0) throw std::runtime_error(std::string("HDF5: cannot create dataset ") + name);
-  if (rows.total > 0) H5Dwrite(set, H5T_NATIVE_INT, mem_space, file_space, transfer_, data);
-  H5Dclose(set);
+  if (set < 0 && error_.empty()) error_ = std::string("cannot create the dataset ") + name + " in " + h5_path_;
+  if (set >= 0 && rows.total > 0 && H5Dwrite(set, H5T_NATIVE_INT, mem_space, file_space, transfer_, data) < 0 &&
+      error_.empty())
+    error_ = std::string("cannot write the dataset ") + name + " of " + h5_path_ + " (file system full or gone?)";
+  if (set >= 0) H5Dclose(set);
   H5Sclose(mem_space);
   H5Sclose(file_space);
 }
@@ -306,7 +314,7 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   char gname[32];
   std::snprintf(gname, sizeof gname, "step_%06zu", times_.size());
   const hid_t g = H5Gcreate2(file_, gname, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (g < 0) throw std::runtime_error("HDF5: cannot create group " + std::string(gname));
+  agree(sub_, g < 0 ? "cannot create the group " + std::string(gname) + " in " + h5_path_ : std::string());
   const hsize_t one = 1;
   const hid_t aspace = H5Screate_simple(1, &one, nullptr);
   const hid_t attr = H5Acreate2(g, "time", H5T_IEEE_F64LE, aspace, H5P_DEFAULT, H5P_DEFAULT);
@@ -344,6 +352,11 @@ void ResultsWriter::write_fields(const MechanicalState& s) {
   write_rows(g, "qdd", dof_rows_, 1, s.qdd.data());
   write_rows(g, "lambda", mult_rows_, 1, s.lambda.data());
   H5Gclose(g);
+  // Tests of error handling: a write that fails on one rank only.
+  if (fault_injected("output") && error_.empty()) error_ = "injected fault (-af_inject_fault output): cannot write " + h5_path_;
+  const std::string failed = error_;
+  error_.clear();
+  agree(sub_, failed);  // every rank throws the same InputError if one write failed
   // Flushing costs ~0.7 ms per call (it dominated small runs when done every step): at most once
   // per second of wall time, and always at the end, so a killed run loses at most ~1 s of output.
   // Collective, so rank 0's clock decides for all.

@@ -16,6 +16,10 @@ struct RunOptions {
   bool write_results = true;  ///< HDF5/XDMF/CSV (tests may switch them off)
   bool verbose = true;        ///< header and summary on rank 0
   bool keep_history = false;  ///< keep every step's sensors in RunSummary (tests; O(steps) memory)
+  /// Where the ranks agree that an error is collective (app/exit_agreement.hpp): an error that only
+  /// some ranks caught ends the job (MPI_Abort) after `exit_timeout` s. MPI_COMM_NULL: no check.
+  MPI_Comm exit_comm = MPI_COMM_NULL;
+  double exit_timeout = 5.0;
 };
 
 struct RunSummary {

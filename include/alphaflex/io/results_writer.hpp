@@ -62,7 +62,8 @@ class ResultsWriter {
   const Model& global_;  ///< the whole model: names, counts and layouts
   bool root_, hdf5_;
   std::string h5_path_, xdmf_path_, csv_path_, h5_name_;
-  long long file_ = -1, transfer_ = -1;  // hid_t of the file and of the (collective) transfer list
+  long long file_ = -1, transfer_ = -1;
+  std::string error_;  ///< the first failed HDF5 call of the current output step, on this rank  // hid_t of the file and of the (collective) transfer list
   std::FILE* csv_ = nullptr;
   std::vector<double> times_;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
