@@ -66,6 +66,7 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   std::vector<double> values;
   auto record = [&](const MechanicalState& st, bool fields) {
     values = sensor_values(model, st);
+    if (opt.on_step) opt.on_step(st);
     if (opt.keep_history) {
       sum.times_out.push_back(st.t);
       sum.sensor_history.push_back(values);

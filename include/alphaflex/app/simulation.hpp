@@ -3,6 +3,7 @@
 // Used by the `alphaflex run` command and by the tests (in-process runs of scenes).
 #include <mpi.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,10 @@ struct RunOptions {
   bool write_results = true;  ///< HDF5/XDMF/CSV (tests may switch them off)
   bool verbose = true;        ///< header and summary on rank 0
   bool keep_history = false;  ///< keep every step's sensors in RunSummary (tests; O(steps) memory)
+  /// Called on every rank with the state (model order, as RunSummary::final_state) at t = 0 and
+  /// after every converged step, load steps included; the study module uses it for histories
+  /// of multipliers and strain energies. Empty: not called.
+  std::function<void(const MechanicalState&)> on_step;
 };
 
 struct RunSummary {
