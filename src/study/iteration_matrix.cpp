@@ -1,0 +1,128 @@
+#include "alphaflex/study/iteration_matrix.hpp"
+
+#include <petscksp.h>
+
+#include <Eigen/SVD>
+#include <limits>
+#include <vector>
+
+#include "alphaflex/assembly/saddle_point_system.hpp"
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/partition/dof_map.hpp"
+
+namespace alphaflex::study {
+namespace {
+
+void check(PetscErrorCode ierr, const char* what) {
+  if (ierr) throw SolverError(std::string("condition number of S_t: PETSc error in ") + what);
+}
+
+// The owned rows of A as (row, column, value) triplets, gathered on rank 0 into a dense matrix.
+Eigen::MatrixXd gather_dense(Mat A, int n, MPI_Comm comm) {
+  PetscInt r0 = 0, r1 = 0;
+  check(MatGetOwnershipRange(A, &r0, &r1), "MatGetOwnershipRange");
+  std::vector<double> local;  // flattened triplets (row, col, value) as doubles
+  for (PetscInt i = r0; i < r1; ++i) {
+    PetscInt ncols = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    check(MatGetRow(A, i, &ncols, &cols, &vals), "MatGetRow");
+    for (PetscInt k = 0; k < ncols; ++k) {
+      local.push_back(static_cast<double>(i));
+      local.push_back(static_cast<double>(cols[k]));
+      local.push_back(vals[k]);
+    }
+    check(MatRestoreRow(A, i, &ncols, &cols, &vals), "MatRestoreRow");
+  }
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const int count = static_cast<int>(local.size());
+  std::vector<int> counts(static_cast<size_t>(size)), displs(static_cast<size_t>(size));
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  std::vector<double> all;
+  if (rank == 0) {
+    int total = 0;
+    for (int r = 0; r < size; ++r) {
+      displs[static_cast<size_t>(r)] = total;
+      total += counts[static_cast<size_t>(r)];
+    }
+    all.resize(static_cast<size_t>(total));
+  }
+  MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, comm);
+  Eigen::MatrixXd D;
+  if (rank == 0) {
+    D = Eigen::MatrixXd::Zero(n, n);
+    for (size_t k = 0; k + 2 < all.size(); k += 3)
+      D(static_cast<int>(all[k]), static_cast<int>(all[k + 1])) += all[k + 2];
+  }
+  return D;
+}
+
+// MUMPS' condition numbers from its error analysis of one solve with A (RINFOG(10), (11)).
+void mumps_condition(Mat A, Vec b, Vec x, MPI_Comm comm, double& cond1, double& cond2) {
+  KSP ksp = nullptr;
+  check(KSPCreate(comm, &ksp), "KSPCreate");
+  check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check(PCSetType(pc, PCLU), "PCSetType");
+  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
+  check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+  Mat F = nullptr;
+  check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
+  check(MatMumpsSetIcntl(F, 11, 1), "MatMumpsSetIcntl(11)");  // full error analysis in the solve
+  check(KSPSetUp(ksp), "KSPSetUp");
+  check(KSPSolve(ksp, b, x), "KSPSolve");
+  PetscReal c1 = 0, c2 = 0;
+  check(MatMumpsGetRinfog(F, 10, &c1), "MatMumpsGetRinfog(10)");
+  check(MatMumpsGetRinfog(F, 11, &c2), "MatMumpsGetRinfog(11)");
+  cond1 = c1;
+  cond2 = c2;
+  KSPDestroy(&ksp);
+}
+
+}  // namespace
+
+ConditionNumbers iteration_matrix_condition(const Model& model, const MechanicalState& s, const AlphaParameters& p,
+                                            double h, bool scaling, MPI_Comm comm, int dense_limit) {
+  DofMap map(model, comm);
+  SaddlePointSystem system(model, map, comm);
+  AssemblyCoefficients c;
+  c.mass = (1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f));  // β' (eq. 6)
+  c.damping = p.gamma / (h * p.beta);                                  // γ'
+  c.stiffness = 1.0;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.v.size());
+  if (model.has_lie_group_nodes()) c.increment = &zero;
+  if (scaling) {
+    c.row_scale = p.beta * h * h;
+    c.multiplier_scale = 1.0 / (p.beta * h * h);
+  }
+  check(system.assemble(s, c, ConstraintRows::Dynamic, true), "assembly");
+  ConditionNumbers out;
+  out.unknowns = map.global_size();
+  out.two_norm = std::numeric_limits<double>::quiet_NaN();
+  if (out.unknowns <= dense_limit) {
+    const Eigen::MatrixXd D = gather_dense(system.matrix(), out.unknowns, comm);
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    double k = 0.0;
+    if (rank == 0) {
+      const Eigen::VectorXd sv = Eigen::BDCSVD<Eigen::MatrixXd>(D).singularValues();
+      k = sv.minCoeff() > 0.0 ? sv.maxCoeff() / sv.minCoeff() : std::numeric_limits<double>::infinity();
+    }
+    MPI_Bcast(&k, 1, MPI_DOUBLE, 0, comm);
+    out.two_norm = k;
+  }
+  Vec b = nullptr, x = nullptr;
+  check(VecDuplicate(system.residual(), &b), "VecDuplicate");
+  check(VecDuplicate(system.residual(), &x), "VecDuplicate");
+  check(VecSet(b, 1.0), "VecSet");
+  mumps_condition(system.matrix(), b, x, comm, out.mumps_cond1, out.mumps_cond2);
+  VecDestroy(&x);
+  VecDestroy(&b);
+  return out;
+}
+
+}  // namespace alphaflex::study
