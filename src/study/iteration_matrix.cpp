@@ -89,32 +89,49 @@ ConditionNumbers iteration_matrix_condition(const Model& model, const Mechanical
                                             double h, bool scaling, MPI_Comm comm, int dense_limit) {
   DofMap map(model, comm);
   SaddlePointSystem system(model, map, comm);
+  const double bh2 = p.beta * h * h;
   AssemblyCoefficients c;
   c.mass = (1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f));  // β' (eq. 6)
   c.damping = p.gamma / (h * p.beta);                                  // γ'
   c.stiffness = 1.0;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.v.size());
   if (model.has_lie_group_nodes()) c.increment = &zero;
-  if (scaling) {
-    c.row_scale = p.beta * h * h;
-    c.multiplier_scale = 1.0 / (p.beta * h * h);
-  }
-  check(system.assemble(s, c, ConstraintRows::Dynamic, true), "assembly");
   ConditionNumbers out;
   out.unknowns = map.global_size();
   out.two_norm = std::numeric_limits<double>::quiet_NaN();
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
   if (out.unknowns <= dense_limit) {
-    const Eigen::MatrixXd D = gather_dense(system.matrix(), out.unknowns, comm);
-    int rank = 0;
-    MPI_Comm_rank(comm, &rank);
+    // cond₂(S) = ‖S‖₂ ‖S⁻¹‖₂, with S⁻¹ formed from the scaled matrix S_s, which is well conditioned:
+    // S = D_L S_s D_R exactly, D_L = diag(1/(βh²) on dynamic rows, 1 on constraint rows),
+    // D_R = diag(1 on coordinates, βh² on multipliers), so S⁻¹ = D_R⁻¹ S_s⁻¹ D_L⁻¹ is accurate entry by
+    // entry even when cond₂(S) is far beyond 1/ε (an SVD of S itself cannot resolve σ_min then).
+    AssemblyCoefficients cs = c;
+    cs.row_scale = bh2;
+    cs.multiplier_scale = 1.0 / bh2;
+    check(system.assemble(s, cs, ConstraintRows::Dynamic, true), "assembly");
+    const Eigen::MatrixXd Ss = gather_dense(system.matrix(), out.unknowns, comm);
     double k = 0.0;
     if (rank == 0) {
-      const Eigen::VectorXd sv = Eigen::BDCSVD<Eigen::MatrixXd>(D).singularValues();
-      k = sv.minCoeff() > 0.0 ? sv.maxCoeff() / sv.minCoeff() : std::numeric_limits<double>::infinity();
+      Eigen::VectorXd dl = Eigen::VectorXd::Ones(out.unknowns), dr = Eigen::VectorXd::Ones(out.unknowns);
+      if (!scaling) {
+        for (int i = 0; i < model.num_dofs(); ++i) dl[map.dof(i)] = 1.0 / bh2;
+        for (int j = 0; j < model.num_multipliers(); ++j) dr[map.multiplier(j)] = bh2;
+      }
+      const Eigen::MatrixXd S = dl.asDiagonal() * Ss * dr.asDiagonal();
+      const Eigen::MatrixXd Sinv = dr.cwiseInverse().asDiagonal() * Ss.fullPivLu().inverse() * dl.cwiseInverse().asDiagonal();
+      const double smax = Eigen::BDCSVD<Eigen::MatrixXd>(S).singularValues()(0);
+      const double imax = Eigen::BDCSVD<Eigen::MatrixXd>(Sinv).singularValues()(0);
+      k = smax * imax;
     }
     MPI_Bcast(&k, 1, MPI_DOUBLE, 0, comm);
     out.two_norm = k;
   }
+  if (scaling) {
+    c.row_scale = bh2;
+    c.multiplier_scale = 1.0 / bh2;
+  }
+  check(system.assemble(s, c, ConstraintRows::Dynamic, true), "assembly");
   Vec b = nullptr, x = nullptr;
   check(VecDuplicate(system.residual(), &b), "VecDuplicate");
   check(VecDuplicate(system.residual(), &x), "VecDuplicate");

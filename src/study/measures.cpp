@@ -54,13 +54,12 @@ std::vector<std::complex<double>> sigma_roots(const AlphaParameters& p) {
 }
 
 double predicted_growth(const AlphaParameters& p) {
-  double m = 0.0;
-  for (const auto& z : rho_roots(p)) m = std::max(m, std::abs(z));
+  double m = std::abs(rho_roots(p)[1]);  // the parasitic root (ζ = 1 is the solution itself)
   for (const auto& z : sigma_roots(p)) m = std::max(m, std::abs(z));
   return m;
 }
 
-double geometric_growth(const std::vector<double>& g) {
+double geometric_growth(const std::vector<double>& g, double scale) {
   std::vector<double> lg;
   for (double v : g) lg.push_back(v > 0.0 && std::isfinite(v) ? std::log(v) : -std::numeric_limits<double>::infinity());
   if (lg.size() < 10) return std::numeric_limits<double>::quiet_NaN();
@@ -71,16 +70,15 @@ double geometric_growth(const std::vector<double>& g) {
   for (size_t i = 0; i < lg.size(); ++i)
     if (lg[i] > lg[imax]) imax = i;
   const double hi = lg[imax];
-  const double span = hi - lo;
-  if (!std::isfinite(lo) || !(span > std::log(1e4))) return std::numeric_limits<double>::quiet_NaN();
-  // The window: after the last time g was near its start-up level, from where it has risen by
-  // 1e2, up to where it is within 1e2 of its maximum.
+  if (!std::isfinite(lo) || !(hi - lo > std::log(1e3))) return std::numeric_limits<double>::quiet_NaN();
+  const double top = std::min(hi - std::log(1e2), std::log(10.0 * scale));
+  // The window: after the last time g was within 10 of its start-up level, up to `top`.
   size_t start = 0;
   for (size_t i = 0; i <= imax; ++i)
-    if (lg[i] < lo + std::log(1e2)) start = i;
+    if (lg[i] < lo + std::log(10.0)) start = i;
   std::vector<double> x, y;
   for (size_t i = start + 1; i <= imax; ++i)
-    if (lg[i] <= hi - std::log(1e2) && std::isfinite(lg[i])) {
+    if (lg[i] <= top && std::isfinite(lg[i])) {
       x.push_back(static_cast<double>(i));
       y.push_back(lg[i]);
     }

@@ -13,7 +13,8 @@
 namespace alphaflex::study {
 
 struct ConditionNumbers {
-  /// σ_max/σ_min of S_t from a dense SVD on rank 0 (exact; NaN above `dense_limit` unknowns).
+  /// ‖S_t‖₂ ‖S_t⁻¹‖₂ from dense SVDs on rank 0, the inverse formed through the scaled matrix so that
+  /// it stays accurate beyond 1/ε (NaN above `dense_limit` unknowns).
   double two_norm = 0.0;
   /// MUMPS' error analysis (ICNTL(11) = 1): RINFOG(10), RINFOG(11), the condition numbers of
   /// Arioli, Demmel & Duff (1989) for componentwise perturbations. They are invariant under row

@@ -3,6 +3,7 @@
 // and the growth factor of an unstable scheme against the roots that predict it (Arnold & Brüls
 // 2007, eq. 18 and 19).
 #include <complex>
+#include <limits>
 #include <vector>
 
 #include "alphaflex/integrators/alpha_parameters.hpp"
@@ -25,14 +26,15 @@ std::vector<std::complex<double>> rho_roots(const AlphaParameters& p);
 /// Roots of σ(ζ) = Σ b'_k ζ^k (eq. 19, coefficients of eq. 16): strict stability at infinity
 /// needs all |ζ'| < 1 (Lemma 1); they govern the multipliers' error recursion (eq. 35).
 std::vector<std::complex<double>> sigma_roots(const AlphaParameters& p);
-/// max |ζ| over the roots of ϱ and σ: the growth factor per step that an instability of either
-/// kind should show (errors in λ follow both, eq. 37: E^λ is driven by E^v with O(1) coupling).
+/// max |ζ| over the parasitic root −α_m/(1 − α_m) of ϱ and the roots of σ: the growth factor per
+/// step that an instability of either kind should show (below 1: the factor a perturbation decays by) (errors in λ follow both, eq. 37: E^λ is driven by E^v with O(1) coupling).
 double predicted_growth(const AlphaParameters& p);
 
 /// Growth per step of a sequence that grows geometrically, g_n ≈ C γⁿ: exp of the least-squares
-/// slope of log g_n over the steps where g_n lies between 1e2 and 1e-2 times the range of its
-/// growth (from the median of its first tenth to its maximum), i.e. away from the start-up and
-/// from the overflow or Newton failure that ends it. NaN if g grows by less than 1e4.
-double geometric_growth(const std::vector<double>& g);
+/// slope of log g_n over the steps where g_n has risen by 10 above its start-up level (the median
+/// of its first tenth) and is still below min(1e-2 × its maximum, 10 × `scale`), i.e. while the
+/// growing mode is a small perturbation of a solution of size `scale` (linear theory), before the
+/// nonlinear blow-up and the Newton failure that end it. NaN if g grows by less than 1e3.
+double geometric_growth(const std::vector<double>& g, double scale = std::numeric_limits<double>::infinity());
 
 }  // namespace alphaflex::study
