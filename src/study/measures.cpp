@@ -72,10 +72,11 @@ double geometric_growth(const std::vector<double>& g, double scale) {
   const double hi = lg[imax];
   if (!std::isfinite(lo) || !(hi - lo > std::log(1e3))) return std::numeric_limits<double>::quiet_NaN();
   const double top = std::min(hi - std::log(1e2), std::log(10.0 * scale));
-  // The window: after the last time g was within 10 of its start-up level, up to `top`.
+  // The window: after the last time g was within 1e2 of its start-up level (which would bias the
+  // rate by its share), up to `top`.
   size_t start = 0;
   for (size_t i = 0; i <= imax; ++i)
-    if (lg[i] < lo + std::log(10.0)) start = i;
+    if (lg[i] < lo + std::log(1e2)) start = i;
   std::vector<double> x, y;
   for (size_t i = start + 1; i <= imax; ++i)
     if (lg[i] <= top && std::isfinite(lg[i])) {

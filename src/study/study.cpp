@@ -328,9 +328,9 @@ class Study {
           r.series[tab.names[k]] = col;
         }
         if (!row_end && spec_.mode == StudyMode::Convergence)
-          throw InputError(spec_.reference.file + ": no row at t = " + num(t_end) + " s, the study's final time (rows from " +
-                           (r.times.empty() ? std::string("-") : num(r.times.front())) + " to " +
-                           (r.times.empty() ? std::string("-") : num(r.times.back())) + " s)");
+          throw InputError(spec_.reference.file + ": no row at t = " + sig6(t_end) + " s, the study's final time (rows from " +
+                           (r.times.empty() ? std::string("-") : sig6(r.times.front())) + " to " +
+                           (r.times.empty() ? std::string("-") : sig6(r.times.back())) + " s)");
         if (row_end)
           for (size_t k = 0; k < tab.names.size(); ++k)
             if (static_cast<int>(k) != tc) r.at_end[tab.names[k]] = (*row_end)[k];
