@@ -57,7 +57,7 @@ def main():
         r, cpu, values = solve(tol, a.t_end)
         ok = bool(r.success) and abs(r.t[-1] - a.t_end) <= 1e-12 * max(1.0, a.t_end)
         msg = str(r.message).replace(",", ";").replace("\n", " ")
-        rows.append(["Radau (SciPy, index 1)", repr(tol), repr(tol), "1" if ok else "0", "%.6g" % cpu,
+        rows.append(["SciPy Radau (index 1)", repr(tol), repr(tol), "1" if ok else "0", "%.6g" % cpu,
                      str(len(r.t) - 1), str(r.nfev), str(r.njev), str(r.nlu), msg]
                     + ["%.17g" % v for v in values])
         print("Radau tol %.0e: %s, CPU %.3f s, %d steps, %d f-evaluations" % (tol, "ok" if ok else "FAILED",

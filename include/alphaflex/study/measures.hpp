@@ -31,7 +31,7 @@ std::vector<std::complex<double>> sigma_roots(const AlphaParameters& p);
 double predicted_growth(const AlphaParameters& p);
 
 /// Growth per step of a sequence that grows geometrically, g_n ≈ C γⁿ: exp of the least-squares
-/// slope of log g_n over the steps where g_n has risen by 10 above its start-up level (the median
+/// slope of log g_n over the steps where g_n has risen by 1e2 above its start-up level (the median
 /// of its first tenth) and is still below min(1e-2 × its maximum, 10 × `scale`), i.e. while the
 /// growing mode is a small perturbation of a solution of size `scale` (linear theory), before the
 /// nonlinear blow-up and the Newton failure that end it. NaN if g grows by less than 1e3.

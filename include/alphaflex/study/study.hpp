@@ -26,7 +26,7 @@ struct StudyOptions {
 
 /// One run of a study (a setting at a step size, a model variant, or a peer at a tolerance).
 struct StudyRow {
-  std::string method = "alphaflex";  ///< "alphaflex", "IDA (GGL index 2)", "Radau (SciPy, index 1)"
+  std::string method = "alphaflex";  ///< "alphaflex", "IDA (GGL index 2)", "SciPy Radau (index 1)"
   std::string label;                 ///< the setting, variant or peer
   AlphaParameters params;            ///< alphaflex rows
   bool scaling = true;
