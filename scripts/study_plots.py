@@ -82,7 +82,7 @@ def grid_for(n):
 
 def save(fig, path):
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=90)
     plt.close(fig)
     print("wrote", path)
 
@@ -161,10 +161,17 @@ def convergence(csv_path, comments, rows, base):
             ax.loglog(*zip(*pts), label=lab_txt, **style(i, peer))
         ax.set(xlabel="CPU time (s)", ylabel="error in " + en, title=en)
         ax.grid(True, which="both", alpha=0.3)
-        if k == 0:
-            ax.legend(fontsize=7)
     for k in range(len(names), nr * nc):
         axes[k // nc][k % nc].axis("off")
+    # one legend for the figure, with every line of every panel (peers have no state errors)
+    seen = {}
+    for a in axes.flat:
+        for hnd, lab in zip(*a.get_legend_handles_labels()):
+            seen.setdefault(lab, hnd)
+    spare = len(names) < nr * nc
+    where = axes[nr - 1][nc - 1] if spare else axes[0][0]
+    where.legend(list(seen.values()), list(seen.keys()), fontsize=8 if spare else 7,
+                 loc="center" if spare else "best")
     fig.suptitle(f"{name}: work–precision (error at t_end vs {cpu_note.split(';')[0][5:]})\n{ref[:160]}", fontsize=9)
     save(fig, os.path.join(base + "_work_precision.png"))
 
@@ -186,12 +193,17 @@ def convergence(csv_path, comments, rows, base):
             hmin, hmax = min(hmin, min(p[0] for p in pts)), max(hmax, max(p[0] for p in pts))
             emin = min(emin, min(p[1] for p in pts))
         if hmax > 0:
-            hh = np.array([hmin, hmax])
-            ax.loglog(hh, emin * (hh / hmin) ** 2, "k:", lw=1, label="order 2")
+            # order-2 guide through the first setting's error at the largest h
+            r_big = [r for r in ours if r["label"] == labels[0] and r["status"] == "ok" and f(r["h"]) == hmax]
+            e_big = f(r_big[0]["err_" + en]) if r_big else float("nan")
+            if e_big > 0:
+                hh = np.array([hmin, hmax])
+                ax.loglog(hh, e_big * (hh / hmax) ** 2, "k:", lw=1, label="order 2")
             # An error that grows again at the smallest h: the round-off of q amplified by β' ~ 1/h²
             # (eq. 34); a slope −2 guide through the smallest-h error shows it.
             rs0 = sorted([r for r in ours if r["label"] == labels[0] and r["status"] == "ok"], key=lambda r: f(r["h"]))
-            if len(rs0) >= 3 and f(rs0[0]["err_" + en]) > f(rs0[1]["err_" + en]) > 0:
+            errs0 = [f(r["err_" + en]) for r in rs0 if f(r["err_" + en]) > 0]
+            if len(rs0) >= 3 and errs0 and f(rs0[0]["err_" + en]) > 3 * min(errs0):
                 h0, e0 = f(rs0[0]["h"]), f(rs0[0]["err_" + en])
                 hg = np.array([h0, 10 * h0])
                 ax.loglog(hg, e0 * (hg / h0) ** -2, "k--", lw=1, label="∝ h⁻² (round-off, eq. 34)")
@@ -261,38 +273,55 @@ def oscillation(csv_path, comments, rows, base):
     main = sensors[0] if sensors else None
     hs = sorted({f(r["h"]) for r in rows}, reverse=True)
     labels = labels_in_order(rows)
-    fig, ax = plt.subplots(1, 2, figsize=(12, 4.4))
+    fig, ax = plt.subplots(1, 3, figsize=(16, 4.4), gridspec_kw={"width_ratios": [1.2, 1, 1.3]})
     if hist and main:
         h0 = hs[0]
-        for i, lab in enumerate(labels):
+        # the most oscillatory first, so that the damped histories are drawn on top
+        tv = {lab: f(next((r for r in rows if r["label"] == lab and f(r["h"]) == h0), {}).get("tv_" + main)) for lab in labels}
+        order = sorted(labels, key=lambda lab: -tv[lab] if math.isfinite(tv[lab]) else 0)
+        series = {}
+        for lab in order:
             hr = [r for r in hist if r["label"] == lab and abs(f(r["h"]) - h0) <= 1e-12 * h0]
-            ax[0].plot([f(r["t"]) for r in hr], [f(r[main]) for r in hr], lw=1, label=lab)
+            series[lab] = (np.array([f(r["t"]) for r in hr]), np.array([f(r[main]) for r in hr]))
+        for i, lab in enumerate(order):
+            t, x = series[lab]
+            ax[0].plot(t, x, lw=1.0, color="C%d" % labels.index(lab), label=lab)
         ax[0].set(xlabel="t (s)", ylabel=main, title=f"{main}, h = {h0:g} s")
         ax[0].grid(alpha=0.3)
         ax[0].legend(fontsize=7)
+        # zoom: 40 steps around the largest step-to-step oscillation of the most oscillatory setting
+        t, x = series[order[0]]
+        if len(x) > 42:
+            d2 = np.abs(np.diff(x, 2))
+            k = int(np.clip(np.nanargmax(d2) + 1, 20, len(x) - 21))
+            for lab in order:
+                tt, xx = series[lab]
+                ax[1].plot(tt[k - 20:k + 21], xx[k - 20:k + 21], ".-", ms=3, lw=0.9, color="C%d" % labels.index(lab),
+                           label=lab)
+            ax[1].set(xlabel="t (s)", ylabel=main, title="zoom: 40 steps around the largest oscillation")
+            ax[1].grid(alpha=0.3)
     width = 0.8 / max(1, len(labels))
-    keys = [k for k in tv_keys]
-    x = np.arange(len(keys) * len(hs))
+    x = np.arange(len(tv_keys) * len(hs))
     for i, lab in enumerate(labels):
         vals = []
         for h in hs:
             r = next((r for r in rows if r["label"] == lab and f(r["h"]) == h), None)
-            for k in keys:
+            for k in tv_keys:
                 vals.append(f(r[k]) if r else float("nan"))
-        ax[1].bar(x + i * width, vals, width, label=lab)
-    ax[1].set_xticks(x + 0.4 - width / 2)
-    ax[1].set_xticklabels([f"{k[3:]}\nh={h:g}" for h in hs for k in keys], fontsize=7)
-    ax[1].set_yscale("log")
-    ax[1].set(ylabel="total variation per unit time", title="TV / T (smooth part + oscillation)")
-    ax[1].grid(alpha=0.3, axis="y")
-    ax[1].legend(fontsize=7)
+        ax[2].bar(x + i * width, vals, width, label=lab, color="C%d" % i)
+    ax[2].set_xticks(x + 0.4 - width / 2)
+    ax[2].set_xticklabels([f"{k[3:]}\nh={h:g}" for h in hs for k in tv_keys], fontsize=7)
+    ax[2].set_yscale("log")
+    ax[2].set(ylabel="total variation per unit time", title="TV / T (smooth variation + oscillation)")
+    ax[2].grid(alpha=0.3, axis="y")
+    ax[2].legend(fontsize=7)
     ratio = ""
     if main and len(labels) > 1:
         r0 = [r for r in rows if r["label"] == labels[0] and f(r["h"]) == hs[0]]
         r1 = [r for r in rows if r["label"] == labels[1] and f(r["h"]) == hs[0]]
         if r0 and r1:
-            ratio = f"; TV({main}) {labels[1]} / {labels[0]} = {f(r1[0]['tv_' + main]) / f(r0[0]['tv_' + main]):.2f} at h = {hs[0]:g}"
-    fig.suptitle(f"{name}: multiplier oscillations{ratio}", fontsize=9)
+            ratio = f"; TV({main}) {labels[1]} / {labels[0]} = {f(r1[0]['tv_' + main]) / f(r0[0]['tv_' + main]):.2f} at h = {hs[0]:g} s"
+    fig.suptitle(f"{name}: oscillations of the multipliers{ratio}", fontsize=9)
     save(fig, base + "_oscillation.png")
 
 
@@ -332,7 +361,7 @@ def fidelity(csv_path, comments, rows, base):
         pts = [(f(r["cpu"]), f(r["err_" + en]), r["label"]) for r in rows]
         xs = [p[0] for p in pts if p[1] > 0]
         ys = [p[1] for p in pts if p[1] > 0]
-        ax[0].loglog(xs, ys, marker=MARKERS[k % len(MARKERS)], ls="-", label=en)
+        ax[0].loglog(xs, ys, marker=MARKERS[k % len(MARKERS)], ls="none", ms=7, label=en)
         if k == 0:
             for p in pts:
                 if p[1] > 0:

@@ -254,11 +254,12 @@ class Study {
     if (!ok) throw InputError(err.empty() ? "cannot write the study's output files (see rank 0)" : err);
   }
 
-  /// Overrides of one run: the setting's solver map, the command line's --set, the setting's
-  /// `set:` list, then the study's h and t_end.
+  /// Overrides of one run: the setting's solver map, the study's `set:`, the command line's --set,
+  /// the setting's `set:` list, then the study's h and t_end.
   std::vector<std::string> overrides(const SchemeSetting& st, double h) const {
     std::vector<std::string> o;
     if (!st.solver_override.empty()) o.push_back(st.solver_override);
+    o.insert(o.end(), spec_.overrides.begin(), spec_.overrides.end());
     o.insert(o.end(), opt_.scene_overrides.begin(), opt_.scene_overrides.end());
     o.insert(o.end(), st.overrides.begin(), st.overrides.end());
     if (h > 0.0) o.push_back("solver.h=" + num(h));

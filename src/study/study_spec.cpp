@@ -219,7 +219,7 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
                                               : "missing (required)");
   for (const auto& o : study_overrides) rd.overrides.emplace_back(apply_assignment(s, o, file), o);
   rd.keys(s, "study", {"name", "mode", "h", "t_end", "settings", "reference", "sensors", "errors", "condition_number",
-                       "peers", "variants", "reference_variant", "plots", "python", "plot_script"});
+                       "peers", "variants", "reference_variant", "plots", "python", "plot_script", "set"});
 
   if (s["mode"]) {
     const std::string m = rd.text(s["mode"], "study.mode");
@@ -298,6 +298,7 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
   if ((spec.mode == StudyMode::Convergence) && spec.reference.file.empty() && !(spec.reference.h > 0.0))
     rd.fail(s, "study.reference", "missing: a convergence study needs a reference (file with source, or a run step size h)");
   if (s["sensors"]) spec.sensors = rd.text_list(s["sensors"], "study.sensors");
+  if (s["set"]) spec.overrides = rd.assignments(s["set"], "study.set");
   if (s["errors"]) {
     const std::string e = rd.text(s["errors"], "study.errors");
     if (e == "relative") spec.relative_errors = true;

@@ -59,6 +59,7 @@ struct StudySpec {
   std::string reference_variant;  ///< fidelity: the variant the others are compared with (default: the last)
   ReferenceSpec reference;
   std::vector<std::string> sensors;  ///< sensors to report (empty: a default per mode)
+  std::vector<std::string> overrides;  ///< `set:`: scene overrides for every run, before the settings' own
   bool relative_errors = true;
   bool condition_number = false;     ///< cond(S_t) at the final state of each run
   PeerSpec peers;
