@@ -450,7 +450,14 @@ class Study {
         res_.rows.push_back(row);
       }
     }
-    if (rank_ == 0) run_peers(t_end);
+    if (rank_ == 0) {
+      // Rank 0 alone: a failing peer must not throw past the collective calls that follow.
+      try {
+        run_peers(t_end);
+      } catch (const std::exception& e) {
+        warn(std::string("the peers stopped: ") + e.what());
+      }
+    }
     fit_slopes();
   }
 
