@@ -512,7 +512,6 @@ class Study {
     }
     return t;
   }
-  std::vector<std::string> radau_names_;
 
   void add_peer_row(const std::vector<std::string>& row, const std::string& label) {
     // Columns of scripts/study_radau_andrews.py: method,rtol,atol,ok,cpu,steps,nfev,njev,nlu,message,values...
