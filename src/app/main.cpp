@@ -8,7 +8,9 @@
 #include <petscsys.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <unistd.h>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -35,6 +37,16 @@ const char* kUsage =
     "  --no-plots         write the CSV only\n"
     "\n"
     "Scene keys: docs/input.md. Exit codes: 0 ok, 1 bad input, 2 bad command line, 3 solver failure.\n";
+
+/// Resident memory of this process now (MB), from /proc/self/statm; 0 where it cannot be read.
+double resident_mb() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0.0;
+  long pages = 0, resident = 0;
+  const int n = std::fscanf(f, "%ld %ld", &pages, &resident);
+  std::fclose(f);
+  return n == 2 ? static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1048576.0 : 0.0;
+}
 
 struct CommandLine {
   std::string command, scene, outdir = ".", study_file;
@@ -90,12 +102,15 @@ CommandLine parse(int argc, char** argv) {
 }
 
 // `alphaflex run`: read the scene on every rank (agreeing on its validity), run it, print the summary.
-void run(const CommandLine& cl, int rank, int size, std::string& message) {
+void run_command(const CommandLine& cl, int rank, int size, std::string& message) {
   // Every rank reads the scene; they must agree that it is valid before anything collective.
   alphaflex::Scene scene;
   int ok = 1;
+  // The scene's whole model is built on every rank (docs/architecture.md): its memory is the
+  // replicated part of a parallel run, reported with the summary.
+  const double before_mb = resident_mb();
   try {
-    scene = alphaflex::read_scene(cl.scene, cl.overrides);
+    scene = alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD);
   } catch (const alphaflex::InputError& e) {
     ok = 0;
     message = e.what();
@@ -115,11 +130,37 @@ void run(const CommandLine& cl, int rank, int size, std::string& message) {
   }
   alphaflex::RunOptions opt;
   opt.outdir = cl.outdir;
-  const alphaflex::RunSummary sum = alphaflex::run_simulation(scene, opt, PETSC_COMM_WORLD);
+  double description_mb = resident_mb() - before_mb, largest_mb = 0.0;
+  MPI_Allreduce(&description_mb, &largest_mb, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  alphaflex::RunSummary sum = alphaflex::run_simulation(scene, opt, PETSC_COMM_WORLD);
+  sum.scene_memory_mb = largest_mb;
   if (rank == 0) {
     if (sum.projection > 1e-12) std::cout << "  consistent start: initial coordinates moved by at most " << sum.projection << "\n";
     std::cout << alphaflex::format_summary(scene, sum);
   }
+}
+
+// `alphaflex study` (docs/study.md): every rank reads the study and agrees it is valid (as for a
+// scene), then all run it together; rank 0 writes the files.
+void study_command(const CommandLine& cl, int rank, std::string& message) {
+  alphaflex::study::StudySpec spec;
+  int ok = 1;
+  try {
+    spec = alphaflex::study::read_study(cl.scene, cl.study_file, cl.study_overrides);
+  } catch (const alphaflex::InputError& e) {
+    ok = 0;
+    message = e.what();
+  }
+  int all_ok = 1;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  if (!all_ok) throw alphaflex::InputError(message.empty() ? cl.scene + ": unreadable on another rank" : message);
+  alphaflex::study::StudyOptions sopt;
+  sopt.outdir = cl.outdir;
+  sopt.scene_overrides = cl.overrides;
+  sopt.plots = cl.plots;
+  const auto res = alphaflex::study::run_study(spec, sopt, PETSC_COMM_WORLD);
+  if (rank == 0)
+    for (const auto& f : res.files) std::cout << "wrote " << f << "\n";
 }
 
 }  // namespace
@@ -151,27 +192,9 @@ int main(int argc, char** argv) {
   std::string message;
   try {
     if (cl.command == "study") {
-      // Every rank reads the study and agrees it is valid (as for a scene), then runs it together.
-      alphaflex::study::StudySpec spec;
-      int ok = 1;
-      try {
-        spec = alphaflex::study::read_study(cl.scene, cl.study_file, cl.study_overrides);
-      } catch (const alphaflex::InputError& e) {
-        ok = 0;
-        message = e.what();
-      }
-      int all_ok = 1;
-      MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-      if (!all_ok) throw alphaflex::InputError(message.empty() ? cl.scene + ": unreadable on another rank" : message);
-      alphaflex::study::StudyOptions sopt;
-      sopt.outdir = cl.outdir;
-      sopt.scene_overrides = cl.overrides;
-      sopt.plots = cl.plots;
-      const auto res = alphaflex::study::run_study(spec, sopt, PETSC_COMM_WORLD);
-      if (rank == 0)
-        for (const auto& f : res.files) std::cout << "wrote " << f << "\n";
+      study_command(cl, rank, message);
     } else {
-      run(cl, rank, size, message);
+      run_command(cl, rank, size, message);
     }
   } catch (const alphaflex::InputError& e) {
     code = 1;

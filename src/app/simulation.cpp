@@ -1,6 +1,7 @@
 #include "alphaflex/app/simulation.hpp"
 
 #include <petscsys.h>
+#include <sys/resource.h>
 
 #include <cmath>
 #include <limits>
@@ -14,15 +15,20 @@
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
 #include "alphaflex/io/results_writer.hpp"
-#include "alphaflex/partition/dof_map.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
 
 namespace alphaflex {
 namespace {
 
-std::vector<double> sensor_values(const Model& m, const MechanicalState& s) {
-  std::vector<double> v;
-  for (const auto& sn : m.sensors()) v.push_back(sn.evaluate(m, s));
+/// Every sensor's value in scene order, on every rank: each is evaluated by the rank that owns
+/// it (on its local state) and the others add zero.
+std::vector<double> sensor_values(const Subdomain& sub, const MechanicalState& s) {
+  std::vector<double> v(sub.global_model().sensors().size(), 0.0);
+  const Model& m = sub.model();
+  for (size_t k = 0; k < m.sensors().size(); ++k)
+    v[static_cast<size_t>(sub.global_sensor(static_cast<int>(k)))] = m.sensors()[k].evaluate(m, s);
+  sub.sum(v);
   return v;
 }
 
@@ -35,38 +41,38 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
   const Model& model = *scene.model;
   const RunSettings& rs = scene.settings;
 
-  DofMap map(model, comm);
-  SaddlePointSystem system(model, map, comm);
+  // This rank's part of the model (METIS partition, owned and ghost nodes): the state below is
+  // local to it.
+  Subdomain sub(model, comm);
+  SaddlePointSystem system(sub);
   LinearSolver solver(comm);
   GeneralizedAlpha integrator(system, solver, rs.parameters, rs.integrator);
 
   RunSummary sum;
   sum.coordinates = model.num_dofs();
   sum.multipliers = model.num_multipliers();
-  sum.unknowns = map.global_size();
+  sum.unknowns = sub.dof_map().global_size();
+  sum.ranks = sub.size();
+  sum.edge_cut = sub.dof_map().edge_cut();
+  sum.unknowns_per_rank = sub.dof_map().unknowns_per_rank();
+  sum.ghosts_per_rank.assign(static_cast<size_t>(sub.size()), 0);
+  {
+    const int ghosts = sub.num_ghost_nodes();
+    MPI_Allgather(&ghosts, 1, MPI_INT, sum.ghosts_per_rank.data(), 1, MPI_INT, comm);
+  }
   for (const auto& sn : model.sensors()) sum.sensor_names.push_back(sn.name);
 
-  // Output files first, and agree on success: only rank 0 writes, so a failure there must not
-  // leave the other ranks waiting in the first collective call.
+  // Output files first (collective: the ranks agree on success inside, so a failure on one rank
+  // does not leave the others waiting).
   std::unique_ptr<ResultsWriter> writer;
-  int ok = 1;
-  std::string err;
-  if (opt.write_results) {
-    try {
-      writer = std::make_unique<ResultsWriter>(model, opt.outdir, scene.name, rs.hdf5, rank);
-    } catch (const std::exception& e) {
-      ok = 0;
-      err = e.what();
-    }
-  }
-  int all_ok = 1;
-  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, comm);
-  if (!all_ok) throw InputError(err.empty() ? "cannot create the output files (see rank 0)" : err);
+  if (opt.write_results) writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name, rs.hdf5);
 
+  integrator.times().setup += MPI_Wtime() - wall0;  // partition, subdomain, preallocation, files
   std::vector<double> values;
   auto record = [&](const MechanicalState& st, bool fields) {
-    values = sensor_values(model, st);
-    if (opt.on_step) opt.on_step(st);
+    values = sensor_values(sub, st);
+    // The observer sees the whole state in model order (a gather, O(model), only when it is set).
+    if (opt.on_step) opt.on_step(sub.size() == 1 ? st : sub.gather(st));
     if (opt.keep_history) {
       sum.times_out.push_back(st.t);
       sum.sensor_history.push_back(values);
@@ -88,15 +94,25 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
         sum.xdmf = writer->xdmf_path();
       }
     }
-    sum.final_state = final_state;
+    sum.final_state = sub.gather(final_state);  // model order, every rank (O(model), once)
     sum.final_sensors = values;
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
+    sum.mumps = solver.statistics();
+    // Peak resident memory of every rank (getrusage: the whole process, in KB on Linux).
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    double mb[2] = {static_cast<double>(ru.ru_maxrss) / 1024.0, 0.0}, tot[2] = {0.0, 0.0};
+    mb[1] = mb[0];
+    MPI_Allreduce(&mb[0], &tot[0], 1, MPI_DOUBLE, MPI_SUM, comm);
+    MPI_Allreduce(&mb[1], &tot[1], 1, MPI_DOUBLE, MPI_MAX, comm);
+    sum.peak_memory_mb = tot[0];
+    sum.peak_memory_max_mb = tot[1];
     sum.symbolic_analyses = solver.symbolic_count();
     sum.wall = MPI_Wtime() - wall0;
     return sum;
   };
-  MechanicalState s = model.initial_state();
+  MechanicalState s = sub.model().initial_state();
   if (rs.analysis == Analysis::Static || rs.initial_static) {
     // Quasi-static load stepping (integrators/quasi_static.hpp): the whole analysis, or the
     // pre-loaded equilibrium a dynamic run starts from.
@@ -138,8 +154,8 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     }
   }
   if (!rs.integrator.consistent_start) {
-    const double viol = constraint_violation(model, s);
-    if (viol > 1e-9 * std::max(1.0, s.q.cwiseAbs().maxCoeff()))
+    const double viol = constraint_violation(sub, s);
+    if (viol > 1e-9 * std::max(1.0, sub.max_abs(s.q)))
       sum.warnings.push_back("solver.consistent_start is off and the initial positions violate the joints by up to " +
                              std::to_string(viol) + ": the first steps' multipliers will be far off");
   }
@@ -164,8 +180,8 @@ RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
     // amplify by β' ~ 1/(βh²). Warn when that floor is no longer small against q̈ itself.
     const auto& p = rs.parameters;
     const double beta_p = (1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f));
-    const double floor = std::numeric_limits<double>::epsilon() * std::max(s.q.cwiseAbs().maxCoeff(), 1e-300) * beta_p;
-    const double acc = s.qdd.size() ? s.qdd.cwiseAbs().maxCoeff() : 0.0;
+    const double floor = std::numeric_limits<double>::epsilon() * std::max(sub.max_abs(s.q), 1e-300) * beta_p;
+    const double acc = sub.max_abs(s.qdd);
     if (floor > 1e-3 * acc) {
       std::ostringstream os;
       os.precision(3);
@@ -267,7 +283,7 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   os.precision(4);
   const double mean = s.steps ? static_cast<double>(s.newton_total) / s.steps : 0.0;
   const PhaseTimes& t = s.times;
-  const double other = std::max(0.0, s.wall - t.assembly - t.factorization - t.solve - t.output);
+  const double other = std::max(0.0, s.wall - t.setup - t.assembly - t.factorization - t.solve - t.output);
   auto pct = [&](double x) { return s.wall > 0 ? 100.0 * x / s.wall : 0.0; };
   os << "summary of " << scene.name << "\n"
      << "  unknowns            " << s.unknowns << " (" << s.coordinates << " coordinates, " << s.multipliers
@@ -282,11 +298,35 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << " (h = " << scene.settings.h << " s, t_end = " << scene.settings.t_end << " s)\n";
   if (scene.settings.analysis != Analysis::Static && s.static_steps > 0)
     os << "  initial statics     " << s.static_steps << " load steps, " << s.static_cuts << " step cuts\n";
+  if (s.ranks > 1) {
+    // Partition quality (METIS): unknowns each rank owns, its ghost nodes, the couplings cut.
+    int lo = s.unknowns_per_rank.empty() ? 0 : s.unknowns_per_rank[0], hi = lo;
+    for (int u : s.unknowns_per_rank) {
+      lo = std::min(lo, u);
+      hi = std::max(hi, u);
+    }
+    const double avg = static_cast<double>(s.unknowns) / s.ranks;
+    os << "  partition           METIS, " << s.ranks << " ranks, edge cut " << s.edge_cut << ", load imbalance "
+       << std::fixed << std::setprecision(3) << (avg > 0 ? hi / avg : 1.0) << std::defaultfloat << std::setprecision(4) << " (largest / mean unknowns per rank)\n"
+       << "    rank      unknowns   ghost nodes\n";
+    for (int r = 0; r < s.ranks; ++r)
+      os << "    " << std::setw(4) << r << std::setw(14) << s.unknowns_per_rank[static_cast<size_t>(r)] << std::setw(14)
+         << s.ghosts_per_rank[static_cast<size_t>(r)] << "\n";
+  }
   os
      << "  Newton iterations   total " << s.newton_total << ", mean " << mean << " per step, max " << s.newton_max << "\n"
-     << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n"
+     << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n";
+  if (s.mumps.mumps)
+    os << "  MUMPS               " << s.mumps.entries << " entries in the factors, " << s.mumps.flops
+       << " flop per factorization, " << s.mumps.memory_sum_mb << " MB in all (" << s.mumps.memory_max_mb
+       << " MB on the largest rank)\n";
+  os << "  memory              peak " << std::setprecision(4) << s.peak_memory_mb << " MB resident in all ranks ("
+     << s.peak_memory_max_mb << " MB largest rank)";
+  if (s.scene_memory_mb >= 0.0) os << ", " << s.scene_memory_mb << " MB of it per rank for the scene's whole model";
+  os << "\n"
      << std::fixed << std::setprecision(3)
      << "  wall time           " << s.wall << " s (" << (s.steps ? 1e6 * s.wall / s.steps : 0.0) << " us per step)\n"
+     << "    setup             " << t.setup << " s (" << std::setprecision(1) << pct(t.setup) << " %)\n" << std::setprecision(3)
      << "    assembly          " << t.assembly << " s (" << std::setprecision(1) << pct(t.assembly) << " %)\n" << std::setprecision(3)
      << "    factorization     " << t.factorization << " s (" << std::setprecision(1) << pct(t.factorization) << " %)\n" << std::setprecision(3)
      << "    solve             " << t.solve << " s (" << std::setprecision(1) << pct(t.solve) << " %)\n" << std::setprecision(3)

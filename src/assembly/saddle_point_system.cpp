@@ -33,23 +33,24 @@ void apply_tangent_operator(const Model& m, const std::vector<int>& nodes, const
 
 }  // namespace
 
-SaddlePointSystem::SaddlePointSystem(const Model& model, const DofMap& map, MPI_Comm comm)
-    : model_(model), map_(map), comm_(comm) {
-  for (const auto& e : model.elements()) {
-    elem_dofs_.push_back(model.dofs_of(e->nodes()));
-    elem_confs_.push_back(model.confs_of(e->nodes()));
+SaddlePointSystem::SaddlePointSystem(const Subdomain& subdomain)
+    : sub_(subdomain), model_(subdomain.model()), comm_(subdomain.comm()) {
+  const auto& pet = sub_.dof_indices();
+  for (const auto& e : model_.elements()) {
+    elem_dofs_.push_back(model_.dofs_of(e->nodes()));
+    elem_confs_.push_back(model_.confs_of(e->nodes()));
     std::vector<int> rows;
-    for (int d : elem_dofs_.back()) rows.push_back(map.dof(d));
+    for (int d : elem_dofs_.back()) rows.push_back(pet[static_cast<size_t>(d)]);
     elem_rows_.push_back(rows);
   }
-  for (size_t c = 0; c < model.constraints().size(); ++c) {
-    const auto& con = model.constraints()[c];
-    con_dofs_.push_back(model.dofs_of(con->nodes()));
-    con_confs_.push_back(model.confs_of(con->nodes()));
+  for (size_t c = 0; c < model_.constraints().size(); ++c) {
+    const auto& con = model_.constraints()[c];
+    con_dofs_.push_back(model_.dofs_of(con->nodes()));
+    con_confs_.push_back(model_.confs_of(con->nodes()));
     std::vector<int> rows, mults;
-    for (int d : con_dofs_.back()) rows.push_back(map.dof(d));
-    const int first = model.first_multiplier(static_cast<int>(c));
-    for (int k = 0; k < con->size(); ++k) mults.push_back(map.multiplier(first + k));
+    for (int d : con_dofs_.back()) rows.push_back(pet[static_cast<size_t>(d)]);
+    const int first = model_.first_multiplier(static_cast<int>(c));
+    for (int k = 0; k < con->size(); ++k) mults.push_back(sub_.multiplier_indices()[static_cast<size_t>(first + k)]);
     con_rows_.push_back(rows);
     con_mults_.push_back(mults);
   }
@@ -57,8 +58,8 @@ SaddlePointSystem::SaddlePointSystem(const Model& model, const DofMap& map, MPI_
 }
 
 SaddlePointSystem::~SaddlePointSystem() {
-  VecScatterDestroy(&to_all_);
-  VecDestroy(&all_);
+  VecScatterDestroy(&to_local_);
+  VecDestroy(&local_);
   VecDestroy(&x_);
   VecDestroy(&r_);
   MatDestroy(&S_);
@@ -66,40 +67,57 @@ SaddlePointSystem::~SaddlePointSystem() {
 
 PetscErrorCode SaddlePointSystem::preallocate() {
   PetscFunctionBeginUser;
-  const int n = map_.global_size();
-  const int lo = map_.owned_begin(), hi = map_.owned_end();
-  // Exact pattern of the owned rows: every rank sees the whole (replicated) connectivity.
-  std::vector<std::set<int>> pattern(static_cast<size_t>(hi - lo));
-  auto couple = [&](const std::vector<int>& rows, const std::vector<int>& cols) {
-    for (int r : rows)
-      if (r >= lo && r < hi)
-        for (int c : cols) pattern[static_cast<size_t>(r - lo)].insert(c);
+  const DofMap& map = sub_.dof_map();
+  const PetscInt n = map.global_size(), nlocal = map.local_size();
+  // The exact pattern, off-rank rows included (a ghost node's rows get entries from this rank's
+  // elements and belong to its owner): insert every block once into a MATPREALLOCATOR, which
+  // communicates the off-rank rows at assembly and then preallocates S exactly.
+  Mat pre;
+  PetscCall(MatCreate(comm_, &pre));
+  PetscCall(MatSetType(pre, MATPREALLOCATOR));
+  PetscCall(MatSetSizes(pre, nlocal, nlocal, n, n));
+  PetscCall(MatSetUp(pre));
+  std::vector<PetscScalar> zeros;
+  auto block = [&](const std::vector<int>& rows, const std::vector<int>& cols) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    zeros.assign(rows.size() * cols.size(), 0.0);
+    PetscCall(MatSetValues(pre, static_cast<PetscInt>(rows.size()), rows.data(), static_cast<PetscInt>(cols.size()),
+                           cols.data(), zeros.data(), INSERT_VALUES));
+    PetscFunctionReturn(0);
   };
-  for (int i = 0; i < model_.num_dofs(); ++i) couple({map_.dof(i)}, {map_.dof(i)});
-  for (int j = 0; j < model_.num_multipliers(); ++j) couple({map_.multiplier(j)}, {map_.multiplier(j)});
-  for (const auto& rows : elem_rows_) couple(rows, rows);
+  for (const auto& rows : elem_rows_) PetscCall(block(rows, rows));
   for (size_t c = 0; c < con_rows_.size(); ++c) {
-    couple(con_rows_[c], con_rows_[c]);
-    couple(con_rows_[c], con_mults_[c]);
-    couple(con_mults_[c], con_rows_[c]);
+    PetscCall(block(con_rows_[c], con_rows_[c]));
+    PetscCall(block(con_rows_[c], con_mults_[c]));
+    PetscCall(block(con_mults_[c], con_rows_[c]));
+    for (int g : con_mults_[c]) PetscCall(block({g}, {g}));
   }
-  std::vector<PetscInt> d_nnz, o_nnz;
-  for (const auto& cols : pattern) {
-    PetscInt d = 0;
-    for (int c : cols) d += (c >= lo && c < hi) ? 1 : 0;
-    d_nnz.push_back(d);
-    o_nnz.push_back(static_cast<PetscInt>(cols.size()) - d);
+  // The diagonal of every owned node coordinate (c_I of the projections, or an explicit zero).
+  for (int i = 0; i < sub_.num_owned_dofs(); ++i) {
+    const int g = sub_.dof_indices()[static_cast<size_t>(i)];
+    PetscCall(block({g}, {g}));
   }
+  PetscCall(MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY));
+
   PetscCall(MatCreate(comm_, &S_));
-  PetscCall(MatSetSizes(S_, hi - lo, hi - lo, n, n));
-  // MATAIJ on purpose (sequential or MPI by communicator): the preallocation below is AIJ's, and
-  // MUMPS takes it directly. The type is not left to the options database.
+  PetscCall(MatSetSizes(S_, nlocal, nlocal, n, n));
+  // MATAIJ on purpose (sequential or MPI by communicator): MUMPS takes it directly, and its
+  // preallocation is the one MATPREALLOCATOR fills. The type is not left to the options database.
   PetscCall(MatSetType(S_, MATAIJ));
-  PetscCall(MatSeqAIJSetPreallocation(S_, 0, d_nnz.data()));
-  PetscCall(MatMPIAIJSetPreallocation(S_, 0, d_nnz.data(), 0, o_nnz.data()));
+  PetscCall(MatPreallocatorPreallocate(pre, PETSC_TRUE, S_));
+  PetscCall(MatDestroy(&pre));
   PetscCall(MatSetOption(S_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatCreateVecs(S_, &x_, &r_));
-  PetscCall(VecScatterCreateToAll(x_, &to_all_, &all_));
+
+  // Owned and ghost unknowns of this rank, in local order: one scatter brings a solution back.
+  std::vector<PetscInt> from(sub_.dof_indices().begin(), sub_.dof_indices().end());
+  from.insert(from.end(), sub_.multiplier_indices().begin(), sub_.multiplier_indices().end());
+  IS is;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), from.data(), PETSC_COPY_VALUES, &is));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), &local_));
+  PetscCall(VecScatterCreate(x_, is, local_, nullptr, &to_local_));
+  PetscCall(ISDestroy(&is));
   PetscFunctionReturn(0);
 }
 
@@ -146,13 +164,11 @@ PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& lo
 PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState& s, const AssemblyCoefficients& c,
                                                           ConstraintRows rows, bool matrix) {
   PetscFunctionBeginUser;
-  const int rank = map_.rank();
   const bool elements_in = rows == ConstraintRows::Acceleration || rows == ConstraintRows::Dynamic;
   const double sc = c.row_scale;
   LocalState ls;
   LocalResidual lr;
   for (size_t e = 0; e < model_.elements().size(); ++e) {
-    if (map_.element_owner(static_cast<int>(e)) != rank) continue;
     const auto& idx = elem_dofs_[e];
     const auto& g = elem_rows_[e];
     const int n = static_cast<int>(idx.size());
@@ -185,7 +201,6 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
   Eigen::VectorXd phi, extra;
   Eigen::MatrixXd phi_q, kc;
   for (size_t k = 0; k < model_.constraints().size(); ++k) {
-    if (map_.constraint_owner(static_cast<int>(k)) != rank) continue;
     const Constraint& con = *model_.constraints()[k];
     const auto& idx = con_dofs_[k];
     const int n = static_cast<int>(idx.size()), m = con.size();
@@ -232,12 +247,9 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
 
   if (matrix) {
     // Diagonal of every owned node unknown: c_I (projections) or an explicit zero (pattern).
-    for (const Node& nd : model_.nodes()) {
-      if (map_.node_owner(static_cast<int>(&nd - model_.nodes().data())) != rank) continue;
-      for (int k = 0; k < nd.ndof; ++k) {
-        const PetscInt g = map_.dof(nd.first_dof + k);
-        PetscCall(MatSetValue(S_, g, g, sc * c.identity, ADD_VALUES));
-      }
+    for (int i = 0; i < sub_.num_owned_dofs(); ++i) {
+      const PetscInt g = sub_.dof_indices()[static_cast<size_t>(i)];
+      PetscCall(MatSetValue(S_, g, g, sc * c.identity, ADD_VALUES));
     }
   }
   PetscFunctionReturn(0);
@@ -245,15 +257,14 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
 
 PetscErrorCode SaddlePointSystem::to_model(Vec v, ModelVector& out) {
   PetscFunctionBeginUser;
-  PetscCall(VecScatterBegin(to_all_, v, all_, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(to_all_, v, all_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterBegin(to_local_, v, local_, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(to_local_, v, local_, INSERT_VALUES, SCATTER_FORWARD));
   const PetscScalar* a = nullptr;
-  PetscCall(VecGetArrayRead(all_, &a));
-  out.dofs.resize(model_.num_dofs());
-  out.multipliers.resize(model_.num_multipliers());
-  for (int i = 0; i < model_.num_dofs(); ++i) out.dofs[i] = a[map_.dof(i)];
-  for (int j = 0; j < model_.num_multipliers(); ++j) out.multipliers[j] = a[map_.multiplier(j)];
-  PetscCall(VecRestoreArrayRead(all_, &a));
+  PetscCall(VecGetArrayRead(local_, &a));
+  const Eigen::Index nd = model_.num_dofs(), nm = model_.num_multipliers();
+  out.dofs = Eigen::Map<const Eigen::VectorXd>(a, nd);
+  out.multipliers = Eigen::Map<const Eigen::VectorXd>(a + nd, nm);
+  PetscCall(VecRestoreArrayRead(local_, &a));
   PetscFunctionReturn(0);
 }
 

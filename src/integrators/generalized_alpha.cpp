@@ -11,12 +11,6 @@
 #include "alphaflex/core/error.hpp"
 
 namespace alphaflex {
-namespace {
-
-double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
-
-}  // namespace
-
 GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solver, AlphaParameters params,
                                    IntegratorOptions options)
     : lin_(system, solver), p_(std::move(params)), opt_(options) {
@@ -24,16 +18,22 @@ GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solv
 }
 
 double GeneralizedAlpha::initialize(MechanicalState& s) {
+  // Every decision below is collective (norms over all ranks, the model's global joint count), so
+  // that all ranks take the same branch and the same number of solves.
+  const Subdomain& sub = lin_.system().subdomain();
   const Model& m = lin_.model();
   const Eigen::VectorXd q_in = s.q;
   // Redundant joints make every S_t singular whatever h is, and MUMPS may not notice when the
   // dependence is only up to round-off: check them up front (Gram–Schmidt on Φ_q, cheap), and
   // leave the full diagnosis to a failed factorization.
-  if (!find_redundant_constraints(m, s).empty()) {
+  const double t0 = MPI_Wtime();
+  const bool redundant = !find_redundant_constraints(sub, s).empty();
+  lin_.times().setup += MPI_Wtime() - t0;
+  if (redundant) {
     std::ostringstream os;
-    os << "the model is singular at t = 0:\n  " << diagnose_singular_system(m, s);
-    const double viol = constraint_violation(m, s);
-    if (viol > 1e-9 * std::max(1.0, inf_norm(s.q)))
+    os << "the model is singular at t = 0:\n  " << diagnose_singular_system(sub, s);
+    const double viol = constraint_violation(sub, s);
+    if (viol > 1e-9 * std::max(1.0, sub.max_abs(s.q)))
       os << "\n  Note: the initial positions also violate the joints (by up to " << viol
          << "); a singular configuration such as links in a straight line can look redundant. Check the positions.";
     throw InputError(os.str());
@@ -45,18 +45,18 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   } reset{lin_.initializing};
   AssemblyCoefficients proj;
   proj.identity = 1.0;
-  if (opt_.consistent_start && m.num_multipliers() > 0) {
+  if (opt_.consistent_start && sub.global_model().num_multipliers() > 0) {
     // Gauss–Newton projection onto Φ(q, t0) = 0 with the minimum-norm correction.
     ModelVector r;
     for (int it = 0; it < 50; ++it) {
       const ModelVector x = lin_.solve(s, proj, ConstraintRows::Position, nullptr);
       m.retract(s.q, -x.dofs);
-      if (inf_norm(x.dofs) <= 1e-14 * std::max(1.0, inf_norm(s.q))) break;
+      if (sub.max_abs(x.dofs) <= 1e-14 * std::max(1.0, sub.max_abs(s.q))) break;
     }
     check_petsc(lin_.system().assemble(s, proj, ConstraintRows::Position, false), "assembly");
     check_petsc(lin_.system().to_model(lin_.system().residual(), r), "residual gather");
-    const double viol = inf_norm(r.multipliers);
-    if (viol > 1e-9 * std::max(1.0, inf_norm(s.q))) {
+    const double viol = sub.max_abs(r.multipliers);
+    if (viol > 1e-9 * std::max(1.0, sub.max_abs(s.q))) {
       ModelVector only_constraints{Eigen::VectorXd(), r.multipliers};
       std::ostringstream os;
       os << "the initial positions cannot be brought onto the joints (remaining violation " << viol << " after "
@@ -84,10 +84,11 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   s.qdd = -x.dofs;
   s.lambda = -x.multipliers;
   a_ = s.qdd;  // a_0 = q̈_0 (eq. 3)
-  return inf_norm(m.difference(q_in, s.q));
+  return sub.max_abs(m.difference(q_in, s.q));
 }
 
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
+  const Subdomain& sub = lin_.system().subdomain();
   const Model& model = lin_.model();
   const double am = p_.alpha_m, af = p_.alpha_f, beta = p_.beta, gamma = p_.gamma;
   const double beta_p = (1.0 - am) / (h * h * beta * (1.0 - af));  // eq. (6)
@@ -139,15 +140,11 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
     n1.qdd += beta_p * dq;
     n1.lambda += dl;
 
-    NewtonRecord rec;
-    rec.residual_dynamic = r.dofs.norm();
-    rec.residual_constraint = r.multipliers.norm();
-    rec.correction_q = inf_norm(dq);
-    rec.correction_lambda = inf_norm(dl);
+    const NewtonRecord rec = newton_record(sub, r, dq, dl);
     report.history.push_back(rec);
     report.iterations = it;
     if (!std::isfinite(rec.correction_q) || !std::isfinite(rec.correction_lambda)) break;
-    converged = newton_converged(nt, rec, it, inf_norm(n1.q), inf_norm(n1.lambda));
+    converged = newton_converged(nt, rec, it, sub.max_abs(n1.q), sub.max_abs(n1.lambda));
   }
   if (!converged) {
     std::ostringstream os;

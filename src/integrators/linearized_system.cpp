@@ -54,7 +54,7 @@ ModelVector LinearizedSystem::solve(const MechanicalState& s, const AssemblyCoef
   if (!solver_.failure().empty()) {
     // Name the cause (redundant joints, coordinates nothing acts on) instead of a MUMPS code; at
     // the start it is the model as given, i.e. bad input.
-    const std::string why = diagnose_singular_system(sys_.model(), s);
+    const std::string why = diagnose_singular_system(sys_.subdomain(), s);
     if (initializing && !why.empty()) throw InputError("the model is singular at t = 0:\n  " + why);
     std::ostringstream os;
     os << "the iteration matrix could not be factored at t = " << s.t << " s: " << solver_.failure();
@@ -72,26 +72,39 @@ ModelVector LinearizedSystem::solve(const MechanicalState& s, const AssemblyCoef
 }
 
 std::string LinearizedSystem::describe_largest(const ModelVector& r) const {
+  // Collective: the rank holding the largest entry names it (its node or joint), every rank gets
+  // the text. Only owned coordinates compete (a ghost's entry is its owner's).
+  const Subdomain& sub = sys_.subdomain();
   const Model& m = sys_.model();
-  std::ostringstream os;
-  Eigen::Index i = 0, j = 0;
-  if (r.dofs.size()) {
-    r.dofs.cwiseAbs().maxCoeff(&i);
-    for (const Node& n : m.nodes())
-      if (i >= n.first_dof && i < n.first_dof + n.ndof)
-        os << "largest equilibrium residual " << r.dofs[i] << " at node '" << n.name << "' ("
-           << coordinate_name(n.kind, static_cast<int>(i) - n.first_dof) << ")";
+  std::string text;
+  // Whether the residual's coordinate part was given (the consistent start passes only the
+  // constraint rows) is the same on every rank; a rank may own no coordinate at all.
+  const bool have_dofs = sub.max_abs(Eigen::VectorXd::Constant(1, static_cast<double>(r.dofs.size()))) > 0.0;
+  if (have_dofs) {
+    Eigen::Index i = 0;
+    const bool mine_here = r.dofs.size() > 0 && sub.num_owned_dofs() > 0;
+    const double mine = mine_here ? r.dofs.head(sub.num_owned_dofs()).cwiseAbs().maxCoeff(&i) : -1.0;
+    const int root = sub.rank_of_max(mine);
+    std::ostringstream os;
+    if (sub.rank() == root && mine >= 0.0)
+      for (const Node& n : m.nodes())
+        if (i >= n.first_dof && i < n.first_dof + n.ndof)
+          os << "largest equilibrium residual " << r.dofs[i] << " at node '" << n.name << "' ("
+             << coordinate_name(n.kind, static_cast<int>(i) - n.first_dof) << ")";
+    text = sub.broadcast(os.str(), root);
   }
-  if (r.multipliers.size()) {
-    r.multipliers.cwiseAbs().maxCoeff(&j);
+  Eigen::Index j = 0;
+  const double mine = r.multipliers.size() ? r.multipliers.cwiseAbs().maxCoeff(&j) : -1.0;
+  const int root = sub.rank_of_max(mine);
+  std::ostringstream os;
+  if (sub.rank() == root && mine >= 0.0)
     for (size_t c = 0; c < m.constraints().size(); ++c) {
       const int first = m.first_multiplier(static_cast<int>(c));
       if (j >= first && j < first + m.constraints()[c]->size())
         os << "; largest constraint violation " << r.multipliers[j] << " in joint '" << m.constraints()[c]->name()
            << "' (" << m.constraints()[c]->type() << ", equation " << (j - first + 1) << ")";
     }
-  }
-  return os.str();
+  return text + sub.broadcast(os.str(), root);
 }
 
 std::string format_newton_history(const std::vector<NewtonRecord>& history, bool scaled) {
@@ -106,6 +119,16 @@ std::string format_newton_history(const std::vector<NewtonRecord>& history, bool
        << std::defaultfloat;
   }
   return os.str();
+}
+
+NewtonRecord newton_record(const Subdomain& sub, const ModelVector& r, const Eigen::VectorXd& dq,
+                           const Eigen::VectorXd& dl) {
+  NewtonRecord rec;
+  rec.residual_dynamic = sub.dof_norm(r.dofs);
+  rec.residual_constraint = sub.multiplier_norm(r.multipliers);
+  rec.correction_q = sub.max_abs(dq);
+  rec.correction_lambda = sub.max_abs(dl);
+  return rec;
 }
 
 bool newton_converged(const NewtonOptions& nt, const NewtonRecord& rec, int iteration, double q_norm, double lambda_norm) {

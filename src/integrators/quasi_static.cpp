@@ -6,12 +6,6 @@
 #include "alphaflex/core/error.hpp"
 
 namespace alphaflex {
-namespace {
-
-double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
-
-}  // namespace
-
 QuasiStatic::QuasiStatic(SaddlePointSystem& system, LinearSolver& solver, StaticOptions options)
     : lin_(system, solver), opt_(options) {
   if (opt_.steps < 1) throw InputError("the quasi-static analysis needs at least one load step");
@@ -19,6 +13,7 @@ QuasiStatic::QuasiStatic(SaddlePointSystem& system, LinearSolver& solver, Static
 
 bool QuasiStatic::equilibrium(MechanicalState& s, MechanicalState trial, double lf, std::vector<NewtonRecord>& history,
                               ModelVector& r) {
+  const Subdomain& sub = lin_.system().subdomain();
   const Model& m = lin_.model();
   AssemblyCoefficients c;
   c.stiffness = 1.0;
@@ -34,14 +29,10 @@ bool QuasiStatic::equilibrium(MechanicalState& s, MechanicalState trial, double 
     }
     m.retract(trial.q, -x.dofs);
     trial.lambda -= x.multipliers;
-    NewtonRecord rec;
-    rec.residual_dynamic = r.dofs.norm();
-    rec.residual_constraint = r.multipliers.norm();
-    rec.correction_q = inf_norm(x.dofs);
-    rec.correction_lambda = inf_norm(x.multipliers);
+    const NewtonRecord rec = newton_record(sub, r, x.dofs, x.multipliers);
     history.push_back(rec);
     if (!std::isfinite(rec.correction_q) || !std::isfinite(rec.correction_lambda)) return false;
-    if (newton_converged(opt_.newton, rec, it, inf_norm(trial.q), inf_norm(trial.lambda))) {
+    if (newton_converged(opt_.newton, rec, it, sub.max_abs(trial.q), sub.max_abs(trial.lambda))) {
       s = trial;
       return true;
     }

@@ -22,6 +22,7 @@
 namespace alphaflex {
 namespace {
 
+using scene_detail::MeshLoader;
 using scene_detail::Reader;
 using scene_detail::SceneBuilder;
 using scene_detail::BodyRef;
@@ -407,9 +408,9 @@ YAML::Node apply_override(YAML::Node root, const std::string& assignment) {
   return v;
 }
 
-Scene build(const YAML::Node& root, const std::string& label,
+Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& mesh_loader,
             const std::vector<std::pair<YAML::Node, std::string>>& overrides) {
-  Reader rd(label);
+  Reader rd(label, mesh_loader);
   for (const auto& [node, text] : overrides) rd.add_override(node, text);
   Scene scene;
   scene.file = label;
@@ -468,7 +469,7 @@ Scene build(const YAML::Node& root, const std::string& label,
 }
 
 Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
-           const std::vector<std::string>& overrides) {
+           const std::vector<std::string>& overrides, const MeshLoader& mesh_loader = read_mesh) {
   YAML::Node root;
   try {
     root = parse();
@@ -484,7 +485,7 @@ Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
     }
   }
   try {
-    return build(root, label, applied);
+    return build(root, label, mesh_loader, applied);
   } catch (const YAML::Exception& e) {
     throw InputError(label + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
@@ -492,13 +493,74 @@ Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
 
 }  // namespace
 
-Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": cannot open the scene file (no such file)");
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": cannot open the scene file (not a file)");
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the scene file");
-  return load([&] { return YAML::LoadFile(path); }, path, overrides);
+namespace {
+
+/// rank 0's scene file as text, or its reason for failing, on every rank.
+std::string scene_text(const std::string& path, int rank, MPI_Comm comm, std::string& error) {
+  std::string text;
+  if (rank == 0) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) error = path + ": cannot open the scene file (no such file)";
+    else if (!std::filesystem::is_regular_file(path, ec)) error = path + ": cannot open the scene file (not a file)";
+    else {
+      std::ifstream in(path, std::ios::binary);
+      if (!in) error = path + ": cannot open the scene file";
+      else text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+  }
+  error = broadcast_text(error, comm);
+  text = broadcast_text(text, comm);
+  return text;
+}
+
+}  // namespace
+
+std::string broadcast_text(const std::string& text, MPI_Comm comm) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  if (size == 1) return text;
+  unsigned long long len = text.size();
+  MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, comm);
+  std::string out = text;
+  out.resize(static_cast<size_t>(len));
+  MPI_Bcast(out.data(), static_cast<int>(len), MPI_CHAR, 0, comm);
+  return out;
+}
+
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  if (size == 1) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(path + ": cannot open the scene file (no such file)");
+    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": cannot open the scene file (not a file)");
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open the scene file");
+    return load([&] { return YAML::LoadFile(path); }, path, overrides);
+  }
+  // Rank 0 reads the file and the mesh; every rank parses the same text, so every rank reaches the
+  // mesh (or fails with the same message) at the same point, and gmsh runs once per run.
+  std::string error;
+  const std::string text = scene_text(path, rank, comm, error);
+  if (!error.empty()) throw InputError(error);
+  const scene_detail::MeshLoader from_rank0 = [rank, comm](const std::string& file, const MeshOptions& options,
+                                             const std::string& context) {
+    std::string err;
+    std::vector<char> bytes;
+    if (rank == 0) {
+      try {
+        bytes = pack(read_mesh(file, options, context));
+      } catch (const std::exception& e) {
+        err = e.what();
+      }
+    }
+    err = broadcast_text(err, comm);
+    if (!err.empty()) throw InputError(err);
+    const std::string b = broadcast_text(std::string(bytes.begin(), bytes.end()), comm);
+    return rank == 0 ? unpack(bytes) : unpack(std::vector<char>(b.begin(), b.end()));
+  };
+  return load([&] { return YAML::Load(text); }, path, overrides, from_rank0);
 }
 
 Scene read_scene_text(const std::string& yaml, const std::string& label, const std::vector<std::string>& overrides) {

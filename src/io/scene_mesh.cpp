@@ -4,6 +4,7 @@
 // shells meet, named mesh points become nodes that joints, loads and sensors refer to by name, and
 // every physical group is kept (as model nodes) for joints and loads given on a group.
 #include <filesystem>
+#include <unordered_set>
 
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
@@ -73,7 +74,7 @@ MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
   }
   std::ostringstream ctx;
   ctx << rd.file() << ":" << (fn.Mark().line + 1) << ": mesh.file";
-  return read_mesh(path.string(), opt, ctx.str());
+  return rd.mesh(path.string(), opt, ctx.str());
 }
 
 /// The line block named by a beam's `group`, or a clear error listing the mesh's curve groups.
@@ -96,6 +97,12 @@ void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, 
     if (node_of[static_cast<size_t>(id)] < 0)
       rd.fail(mn["file"], "mesh.file",
               "named point '" + pname + "' is on none of the beams' or shells' groups (an unconnected node); put it on a beam's curve or a shell's surface, or remove it");
+  for (const auto& [pname, ids] : mesh.point_groups)
+    for (int id : ids)
+      if (node_of[static_cast<size_t>(id)] < 0)
+        rd.fail(mn["file"], "mesh.file",
+                "point group '" + pname + "' holds mesh node " + std::to_string(mesh.node_tags[static_cast<size_t>(id)]) +
+                    ", which is on none of the beams' or shells' groups (an unconnected node); every point of a point group must be on a beam's curve or a shell's surface");
 }
 
 
@@ -228,12 +235,16 @@ void read_shells(Reader& rd, const YAML::Node& sl, const MeshData& mesh, Model& 
 
 /// Every physical group of the mesh in terms of model nodes (−1 for nodes nothing uses).
 void keep_groups(SceneBuilder& sb, const MeshData& mesh, const std::vector<int>& node_of) {
+  // Which model nodes each group holds already (a set per group: groups of 10⁵ nodes are read in
+  // linear time).
+  std::map<const MeshGroup*, std::unordered_set<int>> seen;
   auto add_nodes = [&](MeshGroup& g, const std::vector<int>& mesh_nodes) {
     std::vector<int> el;
+    std::unordered_set<int>& in = seen[&g];
     for (int m : mesh_nodes) {
       const int n = node_of[static_cast<size_t>(m)];
       el.push_back(n);
-      if (std::find(g.nodes.begin(), g.nodes.end(), n) == g.nodes.end() || n < 0) {
+      if (n < 0 || in.insert(n).second) {
         g.nodes.push_back(n);
         g.points.push_back(mesh.points[static_cast<size_t>(m)]);
       }
@@ -257,6 +268,11 @@ void keep_groups(SceneBuilder& sb, const MeshData& mesh, const std::vector<int>&
     MeshGroup& g = sb.mesh_groups[name];
     g.dim = 0;
     add_nodes(g, {m});
+  }
+  for (const auto& [name, ids] : mesh.point_groups) {
+    MeshGroup& g = sb.mesh_groups[name];
+    g.dim = 0;
+    add_nodes(g, ids);
   }
 }
 

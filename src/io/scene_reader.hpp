@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -16,15 +17,25 @@
 #include "alphaflex/core/expression.hpp"
 #include "alphaflex/core/time_function.hpp"
 #include "alphaflex/io/scene.hpp"
+#include "alphaflex/mesh/gmsh_reader.hpp"
 #include "alphaflex/model/planar_marker.hpp"
 
 namespace alphaflex::scene_detail {
 
 
+/// How a scene's mesh is read: read_mesh itself, or (in parallel) rank 0 reads and sends it.
+using MeshLoader = std::function<MeshData(const std::string& path, const MeshOptions&, const std::string& context)>;
+
 /// Reading context: file label and named parameters; every error goes through fail().
 class Reader {
  public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
+  explicit Reader(std::string file, MeshLoader mesh_loader = read_mesh)
+      : file_(std::move(file)), mesh_loader_(std::move(mesh_loader)) {}
+
+  /// Reads (or receives) the mesh at `path`; InputError messages start with `context`.
+  MeshData mesh(const std::string& path, const MeshOptions& options, const std::string& context) const {
+    return mesh_loader_(path, options, context);
+  }
 
   /// Remembers the nodes a --set put in the tree, so that errors in them point at the option.
   void add_override(const YAML::Node& value, const std::string& assignment) {
@@ -233,6 +244,7 @@ class Reader {
 
  private:
   std::string file_;
+  MeshLoader mesh_loader_;
   ExpressionScope scope_;
   std::vector<std::pair<YAML::Node, std::string>> overrides_;
 };
@@ -294,6 +306,9 @@ class SceneBuilder {
       return -1;
     }
     const int id = model_.find_node(name);
+    if (id < 0 && mesh_groups.count(name))
+      rd_.fail(n, path + "." + key, "'" + name + "' is a mesh group of " + std::to_string(mesh_groups.at(name).nodes.size()) +
+                                        " nodes, not one body: give it as `group` (a joint or load at each of its nodes)");
     if (id < 0) rd_.fail(n, path + "." + key, "no body named '" + name + "'" + known_bodies());
     return id;
   }

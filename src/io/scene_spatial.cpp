@@ -1,5 +1,7 @@
 // Spatial scenes (`dimension: 3`): rigid bodies on R³×SO(3), beams from gmsh meshes, 3D joints,
 // loads and sensors. Every key is documented in docs/input.md.
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <set>
 
 #include "alphaflex/core/rotation.hpp"
@@ -46,6 +48,40 @@ int spatial_node(SceneBuilder& sb, const YAML::Node& map, const std::string& key
   if (id >= 0 && !sb.model_.node(id).spatial())
     sb.rd_.fail(map[key], path + "." + key, "expected a spatial body or beam node");
   return id;
+}
+
+/// The pairs (node of a, node of b) at the same reference position (to 1e-9 of the groups'
+/// extent): for joints between two meshed parts, e.g. the beams of a grid that cross at hinges.
+/// Nodes of `a` with no partner are left out; two partners, or no pair at all, is an error.
+std::vector<std::pair<int, int>> coincident_nodes(Reader& rd, const MeshGroup& a, const MeshGroup& b, const YAML::Node& at,
+                                                  const std::string& key) {
+  Eigen::AlignedBox3d box;
+  for (const auto& p : a.points) box.extend(p);
+  for (const auto& p : b.points) box.extend(p);
+  const double tol = 1e-9 * std::max(1.0, box.diagonal().norm());
+  // b's nodes sorted by x; each node of a looks at the slice within tol in x.
+  std::vector<size_t> order(b.nodes.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t i, size_t k) { return b.points[i].x() < b.points[k].x(); });
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < a.nodes.size(); ++i) {
+    if (a.nodes[i] < 0) continue;
+    const Eigen::Vector3d& p = a.points[i];
+    auto it = std::lower_bound(order.begin(), order.end(), p.x() - tol, [&](size_t k, double x) { return b.points[k].x() < x; });
+    int partner = -1;
+    for (; it != order.end() && b.points[*it].x() <= p.x() + tol; ++it) {
+      const int n = b.nodes[*it];
+      if (n < 0 || n == a.nodes[i] || (b.points[*it] - p).norm() > tol) continue;
+      if (partner >= 0 && partner != n)
+        rd.fail(at, key, "two nodes of this group lie at (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " +
+                             std::to_string(p.z()) + "): a node of `group` must have at most one coincident node here");
+      partner = n;
+    }
+    if (partner >= 0) pairs.emplace_back(a.nodes[i], partner);
+  }
+  if (pairs.empty())
+    rd.fail(at, key, "no node of this group is at the place of a node of `group` (a joint per pair of coincident nodes; are the meshes' points distinct but coincident, e.g. Geometry.AutoCoherence = 0 in the .geo?)");
+  return pairs;
 }
 
 /// Initial pose of a node (the identity for the ground).
@@ -138,7 +174,7 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       rd.fail(j["type"], path + ".type",
               "unknown joint type '" + tname + "' (expected spherical, universal, revolute, cylindrical, prismatic, planar, fixed, point_on_line, point_on_plane)");
     const SpatialJointType type = it->second;
-    std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2", "group"};
+    std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2", "group", "group2"};
     const bool has_axis = type != SpatialJointType::Spherical && type != SpatialJointType::Fixed;
     if (has_axis) allowed.insert("axis");
     if (type == SpatialJointType::Universal) allowed.insert("axis2");
@@ -170,14 +206,27 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       group = &sb.mesh_group(g, path + ".group");
     }
     if (!mk1 && !j["body1"] && !group) rd.fail(j, path + ".body1", "missing (required): body1, marker1 or group");
-    const int b2 = mk2 ? mk2->node : (j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1);
-    std::vector<int> firsts;
-    if (group) firsts = group->nodes;
-    else firsts.push_back(mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false));
-    for (size_t k = 0; k < firsts.size(); ++k) {
-      const int b1 = firsts[k];
+    if (j["group2"] && !group) rd.fail(j["group2"], path + ".group2", "group2 pairs the nodes of `group` with coincident ones: give group too");
+    if (j["group2"] && (j["body2"] || mk2))
+      rd.fail(j["group2"], path + ".group2", "give either group2 (the coincident node of another mesh group) or body2/marker2");
+    const int fixed_b2 = mk2 ? mk2->node : (j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1);
+    // (body1, body2) of each joint: one joint, or one per node of `group` (with body2, or with the
+    // node of `group2` at the same place: a hinge between two meshed parts that cross or touch).
+    std::vector<std::pair<int, int>> pairs;
+    if (!group) {
+      pairs.emplace_back(mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false), fixed_b2);
+    } else if (!j["group2"]) {
+      for (int n : group->nodes) pairs.emplace_back(n, fixed_b2);
+    } else {
+      const MeshGroup& other = sb.mesh_group(j["group2"], path + ".group2");
+      pairs = coincident_nodes(rd, *group, other, j["group2"], path + ".group2");
+    }
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      const auto [b1, b2] = pairs[k];
       const std::string jname = group ? name + "[" + std::to_string(k) + "]" : name;
-      if (group && model.find_constraint(jname) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + jname + "' exists already");
+      if (group && k == 0)  // name[0], name[1], …: checked once per group, not once per joint
+        for (const auto& c : model.constraints())
+          if (c->name().rfind(name + "[", 0) == 0) rd.fail(j["name"], path + ".name", "a joint named '" + c->name() + "' exists already");
       if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
       const Pose<double> p1 = initial_pose(model, b1);
       const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)

@@ -457,10 +457,14 @@ class Reader {
       std::vector<std::size_t> tags;
       std::vector<double> xyz;
       gmsh::model::mesh::getNodesForPhysicalGroup(0, g.tag, tags, xyz);
-      if (tags.size() != 1)
-        fail("physical point group '" + g.name + "' holds " + std::to_string(tags.size()) +
-             " nodes: expected exactly one (a named point is one geometry point)");
-      mesh.named_points[g.name] = local_id(tags[0], g);
+      if (tags.empty())
+        fail("physical point group '" + g.name + "' holds no node: expected the geometry points it names");
+      if (tags.size() == 1) {
+        mesh.named_points[g.name] = local_id(tags[0], g);
+        continue;
+      }
+      std::vector<int>& ids = mesh.point_groups[g.name];
+      for (std::size_t t : tags) ids.push_back(local_id(t, g));
     }
   }
 

@@ -29,6 +29,7 @@ int Model::add_node(Node node) {
   num_dofs_ += node.ndof;
   num_conf_ += node.nconf;
   lie_nodes_ = lie_nodes_ || is_lie_group(node.kind);
+  node_index_.emplace(node.name, static_cast<int>(nodes_.size()));  // keeps the first of a name
   nodes_.push_back(std::move(node));
   return static_cast<int>(nodes_.size()) - 1;
 }
@@ -38,19 +39,18 @@ void Model::add_element(std::unique_ptr<Element> e) { elements_.push_back(std::m
 void Model::add_constraint(std::unique_ptr<Constraint> c) {
   first_multiplier_.push_back(num_multipliers_);
   num_multipliers_ += c->size();
+  constraint_index_.emplace(c->name(), static_cast<int>(constraints_.size()));
   constraints_.push_back(std::move(c));
 }
 
 int Model::find_node(const std::string& name) const {
-  for (size_t i = 0; i < nodes_.size(); ++i)
-    if (nodes_[i].name == name) return static_cast<int>(i);
-  return -1;
+  const auto it = node_index_.find(name);
+  return it == node_index_.end() ? -1 : it->second;
 }
 
 int Model::find_constraint(const std::string& name) const {
-  for (size_t i = 0; i < constraints_.size(); ++i)
-    if (constraints_[i]->name() == name) return static_cast<int>(i);
-  return -1;
+  const auto it = constraint_index_.find(name);
+  return it == constraint_index_.end() ? -1 : it->second;
 }
 
 std::vector<int> Model::dofs_of(const std::vector<int>& nodes) const {

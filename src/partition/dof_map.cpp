@@ -59,6 +59,11 @@ DofMap::DofMap(const Model& model, MPI_Comm comm) {
   auto first_node_owner = [&](const std::vector<int>& nodes) { return nodes.empty() ? 0 : node_part_[static_cast<size_t>(nodes.front())]; };
   for (const auto& e : model.elements()) element_owner_.push_back(first_node_owner(e->nodes()));
   for (const auto& c : model.constraints()) constraint_owner_.push_back(first_node_owner(c->nodes()));
+  for (const Sensor& s : model.sensors()) {
+    if (s.kind == Sensor::Kind::JointReaction) sensor_owner_.push_back(constraint_owner_[static_cast<size_t>(s.constraint)]);
+    else if (s.kind == Sensor::Kind::ElementOutput) sensor_owner_.push_back(element_owner_[static_cast<size_t>(s.element)]);
+    else sensor_owner_.push_back(node_part_[static_cast<size_t>(s.node)]);
+  }
 
   // Rank-major numbering: rank 0's node unknowns and multipliers, then rank 1's, ...
   dof_global_.assign(static_cast<size_t>(model.num_dofs()), -1);

@@ -64,6 +64,31 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   PCFailedReason pcreason;
   PetscCall(PCGetFailedReason(pc, &pcreason));
   if (pcreason != PC_NOERROR) PetscCall(describe_failure("factorization"));
+  else if (factors) PetscCall(read_statistics(pc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearSolver::read_statistics(PC pc) {
+  PetscFunctionBeginUser;
+  MatSolverType type = nullptr;
+  PetscBool is_mumps = PETSC_FALSE;
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
+  stats_ = FactorStatistics{};
+  if (!is_mumps) PetscFunctionReturn(0);
+  Mat F;
+  PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscInt entries = 0, mem_max = 0, mem_sum = 0;
+  PetscReal flops = 0.0;
+  PetscCall(MatMumpsGetRinfog(F, 3, &flops));
+  PetscCall(MatMumpsGetInfog(F, 29, &entries));
+  PetscCall(MatMumpsGetInfog(F, 21, &mem_max));
+  PetscCall(MatMumpsGetInfog(F, 22, &mem_sum));
+  stats_.mumps = true;
+  stats_.flops = flops;
+  stats_.entries = entries < 0 ? -1e6 * static_cast<double>(entries) : static_cast<double>(entries);  // < 0: millions
+  stats_.memory_max_mb = static_cast<double>(mem_max);
+  stats_.memory_sum_mb = static_cast<double>(mem_sum);
   PetscFunctionReturn(0);
 }
 

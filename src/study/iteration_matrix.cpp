@@ -8,7 +8,7 @@
 
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
-#include "alphaflex/partition/dof_map.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 
 namespace alphaflex::study {
 namespace {
@@ -87,17 +87,18 @@ void mumps_condition(Mat A, Vec b, Vec x, MPI_Comm comm, double& cond1, double& 
 
 ConditionNumbers iteration_matrix_condition(const Model& model, const MechanicalState& s, const AlphaParameters& p,
                                             double h, bool scaling, MPI_Comm comm, int dense_limit) {
-  DofMap map(model, comm);
-  SaddlePointSystem system(model, map, comm);
+  Subdomain sub(model, comm);
+  SaddlePointSystem system(sub);
+  const MechanicalState local = sub.restrict(s);  // this rank's owned and ghost nodes
   const double bh2 = p.beta * h * h;
   AssemblyCoefficients c;
   c.mass = (1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f));  // β' (eq. 6)
   c.damping = p.gamma / (h * p.beta);                                  // γ'
   c.stiffness = 1.0;
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.v.size());
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(local.v.size());
   if (model.has_lie_group_nodes()) c.increment = &zero;
   ConditionNumbers out;
-  out.unknowns = map.global_size();
+  out.unknowns = sub.dof_map().global_size();
   out.two_norm = std::numeric_limits<double>::quiet_NaN();
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -109,15 +110,20 @@ ConditionNumbers iteration_matrix_condition(const Model& model, const Mechanical
     AssemblyCoefficients cs = c;
     cs.row_scale = bh2;
     cs.multiplier_scale = 1.0 / bh2;
-    check(system.assemble(s, cs, ConstraintRows::Dynamic, true), "assembly");
+    check(system.assemble(local, cs, ConstraintRows::Dynamic, true), "assembly");
     const Eigen::MatrixXd Ss = gather_dense(system.matrix(), out.unknowns, comm);
+    // Which PETSc indices are multipliers (each owned by one rank).
+    std::vector<int> is_multiplier(static_cast<size_t>(out.unknowns), 0);
+    for (int j : sub.multiplier_indices()) is_multiplier[static_cast<size_t>(j)] = 1;
+    MPI_Allreduce(MPI_IN_PLACE, is_multiplier.data(), out.unknowns, MPI_INT, MPI_MAX, comm);
     double k = 0.0;
     if (rank == 0) {
       Eigen::VectorXd dl = Eigen::VectorXd::Ones(out.unknowns), dr = Eigen::VectorXd::Ones(out.unknowns);
-      if (!scaling) {
-        for (int i = 0; i < model.num_dofs(); ++i) dl[map.dof(i)] = 1.0 / bh2;
-        for (int j = 0; j < model.num_multipliers(); ++j) dr[map.multiplier(j)] = bh2;
-      }
+      if (!scaling)
+        for (int i = 0; i < out.unknowns; ++i) {
+          if (is_multiplier[static_cast<size_t>(i)]) dr[i] = bh2;
+          else dl[i] = 1.0 / bh2;
+        }
       const Eigen::MatrixXd S = dl.asDiagonal() * Ss * dr.asDiagonal();
       const Eigen::MatrixXd Sinv = dr.cwiseInverse().asDiagonal() * Ss.fullPivLu().inverse() * dl.cwiseInverse().asDiagonal();
       const double smax = Eigen::BDCSVD<Eigen::MatrixXd>(S).singularValues()(0);
@@ -131,7 +137,7 @@ ConditionNumbers iteration_matrix_condition(const Model& model, const Mechanical
     c.row_scale = bh2;
     c.multiplier_scale = 1.0 / bh2;
   }
-  check(system.assemble(s, c, ConstraintRows::Dynamic, true), "assembly");
+  check(system.assemble(local, c, ConstraintRows::Dynamic, true), "assembly");
   Vec b = nullptr, x = nullptr;
   check(VecDuplicate(system.residual(), &b), "VecDuplicate");
   check(VecDuplicate(system.residual(), &x), "VecDuplicate");

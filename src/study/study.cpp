@@ -64,7 +64,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   std::string msg;
   int ok = 1;
   try {
-    sc = read_scene(path, overrides);
+    sc = read_scene(path, overrides, comm);  // rank 0 reads the file (and meshes), all parse
   } catch (const InputError& e) {
     ok = 0;
     msg = e.what();

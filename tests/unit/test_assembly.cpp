@@ -7,7 +7,7 @@
 #include <random>
 
 #include "alphaflex/assembly/saddle_point_system.hpp"
-#include "alphaflex/partition/dof_map.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 #include "test_support.hpp"
 
 namespace alphaflex::testing {
@@ -27,8 +27,8 @@ class AssembledTangent : public ::testing::TestWithParam<const char*> {};
 TEST_P(AssembledTangent, IterationMatrixIsDerivativeOfResidualAlongNewtonUpdate) {
   Scene sc = read_scene(source_path(std::string("inputs/") + GetParam() + ".yaml"));
   const Model& m = *sc.model;
-  DofMap map(m, PETSC_COMM_WORLD);
-  SaddlePointSystem sys(m, map, PETSC_COMM_WORLD);
+  Subdomain sub(m, PETSC_COMM_WORLD);
+  SaddlePointSystem sys(sub);
 
   // A generic state near the initial one (random velocities, accelerations and multipliers).
   std::mt19937 gen(7);
@@ -62,8 +62,8 @@ TEST_P(AssembledTangent, IterationMatrixIsDerivativeOfResidualAlongNewtonUpdate)
   Eigen::MatrixXd S(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      const PetscInt gi = i < nd ? map.dof(i) : map.multiplier(i - nd);
-      const PetscInt gj = j < nd ? map.dof(j) : map.multiplier(j - nd);
+      const PetscInt gi = i < nd ? sub.dof_map().dof(i) : sub.dof_map().multiplier(i - nd);
+      const PetscInt gj = j < nd ? sub.dof_map().dof(j) : sub.dof_map().multiplier(j - nd);
       PetscScalar v = 0.0;
       ASSERT_EQ(MatGetValues(sys.matrix(), 1, &gi, 1, &gj, &v), 0);
       S(i, j) = v;

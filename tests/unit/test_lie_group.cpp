@@ -11,7 +11,7 @@
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/integrators/generalized_alpha.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
-#include "alphaflex/partition/dof_map.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 #include "test_support.hpp"
 
 namespace alphaflex {
@@ -80,8 +80,8 @@ TEST(LieGroup, PlanarScenesFollowAlgorithm1BitForBit) {
     Scene scene = read_scene(source_path(std::string("inputs/") + name + ".yaml"));
     const Model& m = *scene.model;
     ASSERT_FALSE(m.has_lie_group_nodes());
-    DofMap map(m, PETSC_COMM_WORLD);
-    SaddlePointSystem sys(m, map, PETSC_COMM_WORLD);
+    Subdomain sub(m, PETSC_COMM_WORLD);
+    SaddlePointSystem sys(sub);
     LinearSolver solver(PETSC_COMM_WORLD);
     GeneralizedAlpha lie(sys, solver, scene.settings.parameters, scene.settings.integrator);
     MechanicalState s = m.initial_state();

@@ -2,6 +2,8 @@
 // temporary directory; every error case is checked for its message.
 #include <gmsh.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <unistd.h>
 
 #include <cmath>
@@ -459,11 +461,31 @@ TEST(MeshErrors, OptionsThatDoNotFit) {
   EXPECT_HAS(e, "element_size = -0.5: expected a length > 0");
 }
 
-TEST(MeshErrors, NamedPointMustBeOneNode) {
+TEST(Mesh, PointGroupOfSeveralNodesIsAGroupNotANamedPoint) {
+  // Physical Point("ends") = {1, 2}: both ends of the beam, as a group (supports, hinges), while
+  // "root" and "tip" (one point each) stay named points.
   const TempDir dir;
   const std::string geo = dir.write("ends.geo", std::string(kStraightGeo) + "Physical Point(\"ends\") = {1, 2};\n");
-  const std::string e = error_of([&] { read_mesh(geo, {}, "ctx"); });
-  EXPECT_HAS(e, "physical point group 'ends' holds 2 nodes: expected exactly one");
+  const MeshData m = read_mesh(geo, {}, "ctx");
+  EXPECT_EQ(m.named_points.count("ends"), 0u);
+  ASSERT_EQ(m.point_groups.count("ends"), 1u);
+  const std::vector<int>& ids = m.point_groups.at("ends");
+  ASSERT_EQ(ids.size(), 2u);
+  std::vector<double> xs{m.points[static_cast<size_t>(ids[0])].x(), m.points[static_cast<size_t>(ids[1])].x()};
+  std::sort(xs.begin(), xs.end());
+  EXPECT_EQ(xs[0], 0.0);
+  EXPECT_EQ(xs[1], 2.0);
+  EXPECT_EQ(ids[0] == m.named_points.at("root") || ids[1] == m.named_points.at("root"), true);
+  // The same data survive the byte form in which rank 0 sends a mesh to the others.
+  const MeshData back = unpack(pack(m));
+  EXPECT_EQ(back.point_groups, m.point_groups);
+  EXPECT_EQ(back.named_points, m.named_points);
+  ASSERT_EQ(back.points.size(), m.points.size());
+  for (size_t i = 0; i < m.points.size(); ++i) EXPECT_EQ(back.points[i], m.points[i]);
+  ASSERT_EQ(back.line_blocks.size(), m.line_blocks.size());
+  EXPECT_EQ(back.line_blocks[0].elements, m.line_blocks[0].elements);
+  EXPECT_EQ(back.line_blocks[0].name, m.line_blocks[0].name);
+  EXPECT_EQ(back.node_tags, m.node_tags);
 }
 
 TEST(MeshErrors, DuplicateNames) {

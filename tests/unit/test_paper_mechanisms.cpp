@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "alphaflex/assembly/saddle_point_system.hpp"
-#include "alphaflex/partition/dof_map.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
 #include "test_support.hpp"
 
@@ -107,8 +107,8 @@ TEST(SliderCrank, ConsistentStartProjectsPositionsAndVelocitiesOntoConstraints) 
   Scene sc = read_scene(source_path("inputs/slider_crank.yaml"),
                         {"bodies.4.position=[0.001, 0.3]", "bodies.4.velocity=[0.2, -0.1]"});
   const Model& m = *sc.model;
-  DofMap map(m, PETSC_COMM_WORLD);
-  SaddlePointSystem sys(m, map, PETSC_COMM_WORLD);
+  Subdomain sub(m, PETSC_COMM_WORLD);
+  SaddlePointSystem sys(sub);
   LinearSolver solver(PETSC_COMM_WORLD);
   GeneralizedAlpha ga(sys, solver, sc.settings.parameters, sc.settings.integrator);
   MechanicalState s = m.initial_state();

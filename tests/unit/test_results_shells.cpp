@@ -123,7 +123,8 @@ TEST(ResultsShells, MixedShellMeshIsWrittenWithConnectivityGeometryAndResultants
   const std::string outdir = (std::filesystem::current_path() / "results_shells").string();
   std::string h5, xdmf;
   {
-    ResultsWriter w(model, outdir, "shells", true, 0);
+    Subdomain sub(model, MPI_COMM_SELF);
+    ResultsWriter w(sub, outdir, "shells", true);
     for (const MechanicalState* s : {&s0, &s1}) {
       w.write_sensors(s->t, {model.sensors()[0].evaluate(model, *s)});
       w.write_fields(*s);

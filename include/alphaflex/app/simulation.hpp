@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "alphaflex/io/scene.hpp"
+#include "alphaflex/solvers/linear_solver.hpp"
 
 namespace alphaflex {
 
@@ -40,6 +41,15 @@ struct RunSummary {
   std::vector<double> times_out;      ///< t of every step (including 0), if keep_history
   std::vector<std::vector<double>> sensor_history;  ///< [step][sensor], if keep_history
   std::vector<std::string> warnings;  ///< found during the run (shortened last step, round-off floor, ...)
+  // Parallel layout (METIS partition) and cost.
+  int ranks = 1;
+  int edge_cut = 0;                        ///< couplings (element/joint node pairs) cut by the partition
+  std::vector<int> unknowns_per_rank, ghosts_per_rank;  ///< owned unknowns, ghost nodes
+  FactorStatistics mumps;                  ///< of the last factorization
+  double peak_memory_mb = 0.0, peak_memory_max_mb = 0.0;  ///< peak resident set: sum, largest rank
+  /// Resident memory that reading the scene (and its mesh) and building its whole model took on
+  /// the largest rank: the part every rank holds whatever their number (set by the command).
+  double scene_memory_mb = -1.0;
   std::string h5, xdmf, csv;
 };
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "alphaflex/model/model.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 
 namespace alphaflex {
 
@@ -30,5 +31,13 @@ double constraint_violation(const Model& model, const MechanicalState& s);
 /// Human-readable diagnosis of a singular saddle-point matrix at state s; empty if none found or
 /// if the model is too large for the dense check (then says so).
 std::string diagnose_singular_system(const Model& model, const MechanicalState& s);
+
+// The same on a distributed model, from each rank's local state (collective; every rank gets the
+// same answer, in the global model's numbering and names). The checks need the whole Jacobian, so
+// the state is gathered (O(model) per rank): they run at the start and after a failure only.
+std::vector<RedundantEquation> find_redundant_constraints(const Subdomain& sub, const MechanicalState& local,
+                                                          double tol = 1e-10);
+double constraint_violation(const Subdomain& sub, const MechanicalState& local);
+std::string diagnose_singular_system(const Subdomain& sub, const MechanicalState& local);
 
 }  // namespace alphaflex

@@ -6,8 +6,11 @@
 //
 // with the row scale s and the multiplier scale μ (the unknown of the multiplier rows is Δλ/μ).
 // The integrator chooses the coefficients; this module knows nothing of time integration nor of
-// what the elements are. Each rank evaluates the elements and joints it owns (DofMap) and adds
-// into MATAIJ/VECMPI with exact preallocation; off-rank rows travel through PETSc's stash.
+// what the elements are. Each rank evaluates the elements and joints of its Subdomain (the ones it
+// owns) on its local state and adds into MATAIJ/VECMPI; rows of ghost nodes travel to their owner
+// through PETSc's stash. The preallocation is exact on any number of ranks: one pass of the
+// pattern through a MATPREALLOCATOR (which collects the off-rank rows too) before the first
+// assembly. Solutions come back to each rank's owned and ghost unknowns by one VecScatter.
 #include <petscmat.h>
 #include <petscvec.h>
 
@@ -15,7 +18,7 @@
 #include <vector>
 
 #include "alphaflex/model/model.hpp"
-#include "alphaflex/partition/dof_map.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 
 namespace alphaflex {
 
@@ -39,14 +42,15 @@ enum class ConstraintRows {
   Dynamic,       ///< Φ(q, t); elements in (generalized-α step)
 };
 
-/// Residual and iterate split by kind, in model order, on every rank.
+/// Residual and iterate split by kind, in the subdomain's local order (owned and ghost node
+/// coordinates, then the local multipliers).
 struct ModelVector {
   Eigen::VectorXd dofs, multipliers;
 };
 
 class SaddlePointSystem {
  public:
-  SaddlePointSystem(const Model& model, const DofMap& map, MPI_Comm comm);
+  explicit SaddlePointSystem(const Subdomain& subdomain);
   ~SaddlePointSystem();
   SaddlePointSystem(const SaddlePointSystem&) = delete;
   SaddlePointSystem& operator=(const SaddlePointSystem&) = delete;
@@ -60,10 +64,13 @@ class SaddlePointSystem {
   /// A vector with the layout of the residual (for solutions).
   Vec solution() const { return x_; }
 
-  /// Copies a distributed vector with this layout to every rank, in model order.
+  /// The entries of a distributed vector with this layout that this rank's subdomain holds (its
+  /// owned and ghost unknowns), in local order.
   PetscErrorCode to_model(Vec v, ModelVector& out);
 
-  const DofMap& dof_map() const { return map_; }
+  const Subdomain& subdomain() const { return sub_; }
+  const DofMap& dof_map() const { return sub_.dof_map(); }
+  /// The local model (this rank's subdomain).
   const Model& model() const { return model_; }
 
  private:
@@ -72,13 +79,13 @@ class SaddlePointSystem {
                                          bool matrix);
   PetscErrorCode raise_if_any_rank_failed(const std::string& local_error);
 
+  const Subdomain& sub_;
   const Model& model_;
-  const DofMap& map_;
   MPI_Comm comm_;
   Mat S_ = nullptr;
-  Vec r_ = nullptr, x_ = nullptr, all_ = nullptr;
-  VecScatter to_all_ = nullptr;
-  // Cached per element / joint: model-order unknowns and their global indices.
+  Vec r_ = nullptr, x_ = nullptr, local_ = nullptr;
+  VecScatter to_local_ = nullptr;
+  // Cached per element / joint: local unknowns and their PETSc indices.
   std::vector<std::vector<int>> elem_dofs_, elem_rows_, con_dofs_, con_rows_, con_mults_;
   std::vector<std::vector<int>> elem_confs_, con_confs_;  // configuration indices
 };

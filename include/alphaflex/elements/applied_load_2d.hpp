@@ -12,6 +12,7 @@ class PointForce2D final : public Element {
  public:
   PointForce2D(std::string name, int node, PlanarMarker point, TimeFunctionPtr fx, TimeFunctionPtr fy);
   const char* type() const override { return "force"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<PointForce2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
  private:
@@ -24,6 +25,7 @@ class Torque2D final : public Element {
  public:
   Torque2D(std::string name, int node, TimeFunctionPtr torque);
   const char* type() const override { return "torque"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<Torque2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
  private:

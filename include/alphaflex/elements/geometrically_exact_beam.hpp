@@ -49,6 +49,7 @@
 //
 // Limitation: log_SO(3) is continuous for |θ| < π; the element's relative rotation between its end
 // sections must stay below π (refine the mesh well before).
+#include <memory>
 #include <Eigen/Dense>
 #include <array>
 #include <string>
@@ -76,6 +77,7 @@ class GeometricallyExactBeam final : public Element {
                          const Eigen::Matrix3d& section_b, const Eigen::Vector3d& gravity);
 
   const char* type() const override { return "beam"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<GeometricallyExactBeam>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
   /// {N, V2, V3, T, M2, M3, axial_strain, shear_strain_2, shear_strain_3, twist, curvature_2,

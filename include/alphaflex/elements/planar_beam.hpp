@@ -33,6 +33,7 @@
 //
 // Limitations: g has a pole at |Δθ| = 2π; the reference must have |Δθ0| < π (checked; use shorter
 // elements for tighter curves) and the deformed element must keep |Δθ| well below 2π.
+#include <memory>
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
@@ -58,6 +59,7 @@ class PlanarBeam final : public Element {
              double section_angle_b, const Eigen::Vector2d& gravity);
 
   const char* type() const override { return "beam"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<PlanarBeam>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
   /// {N, V, M, axial_strain, shear_strain, curvature}: section forces C ε (N, N, N·m) and strains ε,

@@ -10,6 +10,7 @@ class RigidBody2D final : public Element {
  public:
   RigidBody2D(std::string name, int node, double mass, double inertia, Eigen::Vector2d gravity);
   const char* type() const override { return "rigid_body"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<RigidBody2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
  private:
@@ -23,6 +24,7 @@ class PointMass final : public Element {
  public:
   PointMass(std::string name, int node, const struct Node& n, double mass, Eigen::Vector2d gravity);
   const char* type() const override { return "point_mass"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<PointMass>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
  private:

@@ -89,6 +89,7 @@ class ReissnerMindlinShell final : public Element {
                        const ShellOptions& options = {});
 
   const char* type() const override { return nodes().size() == 4 ? "shell_quad4" : "shell_tri3"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<ReissnerMindlinShell>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
   /// {n11, n22, n12, m11, m22, m12, q1, q2, von_mises_top, von_mises_bottom}: resultants at the
@@ -141,6 +142,7 @@ class ShellPressure final : public Element {
   ShellPressure(std::string name, std::vector<int> nodes, const std::vector<Eigen::Vector3d>& reference_points,
                 TimeFunctionPtr pressure, bool follower);
   const char* type() const override { return "pressure"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<ShellPressure>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
  private:

@@ -16,6 +16,7 @@ class RigidBody3D final : public Element {
  public:
   RigidBody3D(std::string name, int node, double mass, const Eigen::Matrix3d& inertia, const Eigen::Vector3d& gravity);
   const char* type() const override { return "rigid_body"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<RigidBody3D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
   double mass() const { return m_; }
   const Eigen::Matrix3d& inertia() const { return j_; }
@@ -36,6 +37,7 @@ class SpatialLoad final : public Element {
   SpatialLoad(std::string name, int node, const Eigen::Vector3d& point, std::array<TimeFunctionPtr, 3> force,
               std::array<TimeFunctionPtr, 3> moment, bool follower);
   const char* type() const override { return "load"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<SpatialLoad>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
   /// The residual kernel (model/spatial_kernel.hpp) at load factor `factor`.

@@ -18,6 +18,7 @@ class SpringDamper2D final : public Element {
   SpringDamper2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2, double stiffness,
                  double damping, double rest_length, std::optional<Eigen::Vector2d> axis);
   const char* type() const override { return "spring_damper"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<SpringDamper2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
   /// Current length (or elongation along the axis) for the given local coordinates.

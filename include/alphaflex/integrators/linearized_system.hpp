@@ -28,6 +28,10 @@ struct NewtonRecord {
   double correction_q = 0.0, correction_lambda = 0.0;  ///< ‖Δq‖∞, ‖Δλ‖∞
 };
 
+/// The record of one Newton iteration from the local residual and corrections, with norms over
+/// all ranks (collective): ‖r_q‖₂ over owned coordinates, ‖Φ‖₂, ‖Δq‖∞, ‖Δλ‖∞.
+NewtonRecord newton_record(const Subdomain& sub, const ModelVector& residual, const Eigen::VectorXd& dq,
+                           const Eigen::VectorXd& dlambda);
 /// The Newton stopping rule on the last correction (generalized_alpha.hpp explains why):
 /// ‖Δq‖∞ ≤ atol + rtol‖q‖∞ and ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞, the λ test waived once Δq is at
 /// round-off (≤ 10⁴ ε ‖q‖) after the first iteration.
@@ -39,6 +43,9 @@ std::string format_newton_history(const std::vector<NewtonRecord>& history, bool
 /// Wall time spent by phase (seconds, this rank).
 struct PhaseTimes {
   double assembly = 0.0, factorization = 0.0, solve = 0.0, output = 0.0;
+  /// Before the first step: partition, subdomain, preallocation, output files, the check for
+  /// redundant joints (the consistent start's solves count as assembly, factorization, solve).
+  double setup = 0.0;
 };
 
 class LinearizedSystem {

@@ -2,6 +2,8 @@
 // Scene files (YAML) → a validated Model and run settings. Every key is documented in
 // docs/input.md; unknown keys, wrong types and dangling references raise InputError naming the
 // file, line, key path and what was expected.
+#include <mpi.h>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,8 +46,14 @@ struct Scene {
 };
 
 /// Reads and validates a scene. `overrides` are "key.path=value" strings (from --set) applied to
-/// the YAML tree before validation, so they are checked like the file itself.
-Scene read_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+/// the YAML tree before validation, so they are checked like the file itself. Collective over
+/// `comm`: rank 0 reads the file and its mesh (gmsh) and sends them; every rank builds the same
+/// model, and a failure is the same InputError on every rank.
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides = {},
+                 MPI_Comm comm = MPI_COMM_SELF);
+
+/// `text` of rank 0 on every rank of `comm` (collective).
+std::string broadcast_text(const std::string& text, MPI_Comm comm);
 
 /// Same, from YAML text (tests); `label` stands for the file name in messages.
 Scene read_scene_text(const std::string& yaml, const std::string& label,

@@ -13,6 +13,7 @@ class RevoluteJoint2D final : public Constraint {
  public:
   RevoluteJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2);
   const char* type() const override { return "revolute"; }
+  std::unique_ptr<Constraint> clone() const override { return std::make_unique<RevoluteJoint2D>(*this); }
   int size() const override { return 2; }
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
@@ -32,6 +33,7 @@ class PointOnLineJoint2D : public Constraint {
   PointOnLineJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2,
                      const Eigen::Vector2d& axis);
   const char* type() const override { return "point_on_line"; }
+  std::unique_ptr<Constraint> clone() const override { return std::make_unique<PointOnLineJoint2D>(*this); }
   int size() const override { return 1; }
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
@@ -53,6 +55,7 @@ class PrismaticJoint2D final : public PointOnLineJoint2D {
   PrismaticJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2,
                    const Eigen::Vector2d& axis, double relative_angle);
   const char* type() const override { return "prismatic"; }
+  std::unique_ptr<Constraint> clone() const override { return std::make_unique<PrismaticJoint2D>(*this); }
   int size() const override { return 2; }
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
@@ -71,6 +74,7 @@ class FixedJoint2D final : public Constraint {
  public:
   FixedJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2, double relative_angle);
   const char* type() const override { return "fixed"; }
+  std::unique_ptr<Constraint> clone() const override { return std::make_unique<FixedJoint2D>(*this); }
   int size() const override { return 3; }
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,

@@ -61,6 +61,7 @@ class SpatialJoint final : public Constraint {
                TimeFunctionPtr angle = nullptr, TimeFunctionPtr displacement = nullptr);
 
   const char* type() const override { return to_string(type_); }
+  std::unique_ptr<Constraint> clone() const override { return std::make_unique<SpatialJoint>(*this); }
   SpatialJointType joint_type() const { return type_; }
   int size() const override { return size_; }
   const SpatialMarker& marker_a() const { return a_; }

@@ -51,7 +51,10 @@ struct MeshData {
   std::vector<Eigen::Vector3d> points;        ///< node coordinates (m), index = local node id
   std::vector<std::size_t> node_tags;         ///< gmsh tag of each local node (for messages)
   std::vector<MeshLineBlock> line_blocks;     ///< physical groups of dimension 1, by physical tag
-  std::map<std::string, int> named_points;    ///< physical groups of dimension 0 → local node id
+  std::map<std::string, int> named_points;    ///< physical groups of dimension 0 with one node → local node id
+  /// Physical groups of dimension 0 with several nodes (supports, hinge points): local node ids
+  /// in gmsh node order. They name groups (a joint or load at each node), not single bodies.
+  std::map<std::string, std::vector<int>> point_groups;
   /// The .geo's ONELAB number parameters (DefineConstant with a Name) and the values it was
   /// meshed with: defaults and MeshOptions::parameters. Empty for a .msh.
   std::map<std::string, double> parameters;
@@ -70,9 +73,9 @@ struct MeshData {
 /// every failure: missing or unreadable file, unknown extension, gmsh's own errors, options that
 /// do not fit the file, unknown parameters, no physical groups, unsupported element types
 /// (second-order surface elements among them), named points that are not exactly one node,
-/// duplicate group names, a surface block whose elements cannot be oriented consistently
+/// empty point groups, duplicate group names, a surface block whose elements cannot be oriented consistently
 /// (non-orientable, like a Möbius strip). Elements reversed to agree with their neighbours are
-/// reported in `warnings`.
+/// reported in `warnings`. A point group of one node is a named point, of several a point group.
 ///
 /// Local node ids are compact (only nodes of the returned groups) and deterministic: in order of
 /// first use by the line blocks (by physical tag, gmsh element order), then by the surface blocks
@@ -82,5 +85,9 @@ struct MeshData {
 /// at once (gmsh's first initialize in a process makes FLTK rewrite its preference file, with the
 /// same content on every rank: meshes/README.md).
 MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context);
+
+/// MeshData as bytes and back (one rank reads the mesh with gmsh and sends it to the others).
+std::vector<char> pack(const MeshData& mesh);
+MeshData unpack(const std::vector<char>& bytes);
 
 }  // namespace alphaflex

@@ -2,6 +2,8 @@
 // A joint: holonomic constraints Φ(q, t) = 0 at position level (index 3) with one Lagrange
 // multiplier per equation. Like an element it sees only the local coordinates of its nodes.
 #include <Eigen/Dense>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,18 @@ class Constraint {
                                  Eigen::VectorXd& c) const = 0;
   /// The force and moment of the joint on its first body, from the multipliers.
   virtual JointReaction reaction(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda) const = 0;
+
+  /// The same joint on other indices of the same nodes: a subdomain's local numbering.
+  std::unique_ptr<Constraint> renumbered(std::vector<int> nodes) const {
+    if (nodes.size() != nodes_.size()) throw std::logic_error("Constraint::renumbered: wrong number of nodes");
+    std::unique_ptr<Constraint> c = clone();
+    c->nodes_ = std::move(nodes);
+    return c;
+  }
+
+ protected:
+  Constraint(const Constraint&) = default;
+  virtual std::unique_ptr<Constraint> clone() const = 0;
 
  private:
   std::string name_;

@@ -6,6 +6,8 @@
 // motion are Σ_e r_e + Φ_qᵀ λ = 0. Tangents: K = ∂r/∂q, C = ∂r/∂q̇, M = ∂r/∂q̈, from which the
 // integrator forms S_t = M β' + C γ' + K (eq. 7).
 #include <Eigen/Dense>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,19 @@ class Element {
   virtual std::vector<std::string> output_names() const { return {}; }
   /// Their values at state `s` (one per name).
   virtual void output(const LocalState& /*s*/, Eigen::VectorXd& values) const { values.resize(0); }
+
+  /// The same element on other indices of the same nodes: a subdomain's local numbering
+  /// (partition/subdomain.hpp). An element holds no reference to the model, so the copy is whole.
+  std::unique_ptr<Element> renumbered(std::vector<int> nodes) const {
+    if (nodes.size() != nodes_.size()) throw std::logic_error("Element::renumbered: wrong number of nodes");
+    std::unique_ptr<Element> e = clone();
+    e->nodes_ = std::move(nodes);
+    return e;
+  }
+
+ protected:
+  Element(const Element&) = default;
+  virtual std::unique_ptr<Element> clone() const = 0;
 
  private:
   std::string name_;

@@ -4,6 +4,7 @@
 // DofMap maps this order to the parallel (PETSc) one.
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "alphaflex/model/constraint.hpp"
@@ -37,7 +38,8 @@ class Model {
   int num_multipliers() const { return num_multipliers_; }
   /// Index of constraint c's first multiplier in model order.
   int first_multiplier(int c) const { return first_multiplier_.at(static_cast<size_t>(c)); }
-  /// -1 if no node has this name.
+  /// -1 if no node has this name (the first one if several have it). Constant time: scenes with
+  /// 10⁵ nodes look names up once per node.
   int find_node(const std::string& name) const;
   int find_constraint(const std::string& name) const;
 
@@ -68,6 +70,7 @@ class Model {
   std::vector<std::unique_ptr<Constraint>> constraints_;
   std::vector<Sensor> sensors_;
   std::vector<int> first_multiplier_;
+  std::unordered_map<std::string, int> node_index_, constraint_index_;
   int num_dofs_ = 0;
   int num_conf_ = 0;
   int num_multipliers_ = 0;

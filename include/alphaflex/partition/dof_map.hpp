@@ -3,11 +3,9 @@
 // rank owns a contiguous block of the global (PETSc) numbering: its nodes' unknowns, then the
 // multipliers of the joints it owns. Nodes are partitioned with METIS over the graph of nodes
 // coupled by elements and joints (weighted by their number of unknowns); an element or a joint
-// belongs to the rank of its first node.
-//
-// For now every rank holds the whole model and the whole state (replicated), so the partition
-// decides only who assembles what and who owns which rows; the parallel-at-scale issue replaces
-// replication by ghost exchange without changing this interface.
+// belongs to the rank of its first node, a sensor to the owner of what it reads (its joint, its
+// element or its node). Every rank computes the same map from the same model (METIS is
+// deterministic with a fixed seed); the Subdomain (subdomain.hpp) cuts each rank's part from it.
 #include <mpi.h>
 
 #include <vector>
@@ -33,6 +31,7 @@ class DofMap {
   int node_owner(int n) const { return node_part_[static_cast<size_t>(n)]; }
   int element_owner(int e) const { return element_owner_[static_cast<size_t>(e)]; }
   int constraint_owner(int c) const { return constraint_owner_[static_cast<size_t>(c)]; }
+  int sensor_owner(int s) const { return sensor_owner_[static_cast<size_t>(s)]; }
   /// Unknowns owned by each rank (node coordinates + multipliers).
   const std::vector<int>& unknowns_per_rank() const { return per_rank_; }
   /// Number of element/joint couplings that cross a partition boundary (METIS edge cut).
@@ -41,7 +40,7 @@ class DofMap {
  private:
   int rank_ = 0, size_ = 1;
   int global_size_ = 0, owned_begin_ = 0, owned_end_ = 0, edge_cut_ = 0;
-  std::vector<int> node_part_, element_owner_, constraint_owner_;
+  std::vector<int> node_part_, element_owner_, constraint_owner_, sensor_owner_;
   std::vector<int> dof_global_, mult_global_, per_rank_;
 };
 

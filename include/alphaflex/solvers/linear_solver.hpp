@@ -10,6 +10,16 @@
 
 namespace alphaflex {
 
+/// What the last factorization cost, from MUMPS' own statistics (zero when the options replaced
+/// MUMPS by another solver).
+struct FactorStatistics {
+  bool mumps = false;
+  double flops = 0.0;         ///< RINFOG(3): operations of the elimination
+  double entries = 0.0;       ///< INFOG(29): entries in the factors, all ranks
+  double memory_max_mb = 0.0; ///< INFOG(21): MB used during the factorization, largest rank
+  double memory_sum_mb = 0.0; ///< INFOG(22): the same, summed over the ranks
+};
+
 class LinearSolver {
  public:
   explicit LinearSolver(MPI_Comm comm);
@@ -28,14 +38,18 @@ class LinearSolver {
   /// replace the LU by an iterative method).
   int symbolic_count() const { return symbolic_; }
   int numeric_count() const { return numeric_; }
+  /// MUMPS' statistics of the last successful factorization.
+  const FactorStatistics& statistics() const { return stats_; }
 
  private:
   PetscErrorCode describe_failure(const char* phase);
+  PetscErrorCode read_statistics(PC pc);
 
   KSP ksp_ = nullptr;
   std::string failure_;
   int symbolic_ = 0, numeric_ = 0;
   PetscObjectState last_state_ = -1;
+  FactorStatistics stats_;
 };
 
 }  // namespace alphaflex
