@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(build-essential cmake pkg-config git
       petsc-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev
-      libgmsh-dev gmsh libeigen3-dev libyaml-cpp-dev libgtest-dev
+      libgmsh-dev gmsh libeigen3-dev libyaml-cpp-dev libgtest-dev libsundials-dev
       python3-matplotlib python3-numpy python3-h5py python3-scipy paraview python3-paraview)
 missing=()
 for p in "${PKGS[@]}"; do

@@ -1,6 +1,8 @@
 // alphaflex — flexible multibody dynamics with the generalized-α scheme of Arnold & Brüls (2007).
 //
 //   alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [PETSc options]
+//   alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]
+//                   [--study-set key=value ...] [--no-plots] [PETSc options]
 //
 // Exit codes: 0 success, 1 bad input, 2 bad command line, 3 solver failure, 4 internal error.
 #include <petscsys.h>
@@ -16,16 +18,24 @@
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/study/study.hpp"
 
 namespace {
 
 const char* kUsage =
     "usage: alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [PETSc options]\n"
+    "       alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]\n"
+    "                       [--study-set key=value ...] [--no-plots] [PETSc options]\n"
     "\n"
     "  -o OUTDIR          where NAME.h5, NAME.xdmf (ParaView) and NAME.csv (sensors) go (default: .)\n"
     "  --set key=value    override a scene key, e.g. --set solver.h=1e-3 --set solver.rho_inf=0.9\n"
     "                     --set solver.scheme=hht --set solver.scaling=off --set solver.t_end=0.5\n"
     "  PETSc options      passed through, e.g. -log_view, -mat_mumps_icntl_4 2, -ksp_view\n"
+    "  study: runs the scene over step sizes and scheme settings (its study: block, or --study FILE),\n"
+    "  writes OUTDIR/NAME_study.csv and charts (scripts/study_plots.py); docs/study.md\n"
+    "  --study FILE       the study map (a file with one top-level study: key)\n"
+    "  --study-set k=v    override a study key, e.g. --study-set h=[1e-3,5e-4]\n"
+    "  --no-plots         write the CSV only\n"
     "\n"
     "Scene keys: docs/input.md. Exit codes: 0 ok, 1 bad input, 2 bad command line, 3 solver failure.\n";
 
@@ -40,8 +50,9 @@ double resident_mb() {
 }
 
 struct CommandLine {
-  std::string command, scene, outdir = ".";
-  std::vector<std::string> overrides;
+  std::string command, scene, outdir = ".", study_file;
+  std::vector<std::string> overrides, study_overrides;
+  bool plots = true, study_options = false;
   std::vector<char*> petsc_argv;
   std::string error;
 };
@@ -61,6 +72,17 @@ CommandLine parse(int argc, char** argv) {
       else cl.overrides.push_back(argv[++i]);
     } else if (a.rfind("--set=", 0) == 0) {
       cl.overrides.push_back(a.substr(6));
+    } else if (a == "--study") {
+      cl.study_options = true;
+      if (i + 1 >= argc || argv[i + 1][0] == '\0') cl.error = "--study needs a study file";
+      else cl.study_file = argv[++i];
+    } else if (a == "--study-set") {
+      cl.study_options = true;
+      if (i + 1 >= argc) cl.error = "--study-set needs key=value";
+      else cl.study_overrides.push_back(argv[++i]);
+    } else if (a == "--no-plots") {
+      cl.study_options = true;
+      cl.plots = false;
     } else if (!a.empty() && a[0] == '-') {
       // A PETSc option, with its value if the next word is not an option itself (nor a scene).
       cl.petsc_argv.push_back(argv[i]);
@@ -80,6 +102,70 @@ CommandLine parse(int argc, char** argv) {
   return cl;
 }
 
+// `alphaflex run`: read the scene on every rank (agreeing on its validity), run it, print the summary.
+void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, double exit_timeout, std::string& message) {
+  // Every rank reads the scene; they must agree that it is valid before anything collective.
+  alphaflex::Scene scene;
+  int ok = 1;
+  // The scene's whole model is built on every rank (docs/architecture.md): its memory is the
+  // replicated part of a parallel run, reported with the summary.
+  const double before_mb = resident_mb();
+  try {
+    scene = alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD);
+  } catch (const alphaflex::InputError& e) {
+    ok = 0;
+    message = e.what();
+  }
+  int all_ok = 1;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  if (!all_ok) throw alphaflex::InputError(message.empty() ? cl.scene + ": unreadable on another rank" : message);
+
+  if (rank == 0) {
+    const auto& p = scene.settings.parameters;
+    std::cout << "alphaflex: " << scene.name << " (" << cl.scene << ") on " << size << " rank(s)\n"
+              << "  scheme " << p.scheme << ": alpha_m = " << p.alpha_m << ", alpha_f = " << p.alpha_f
+              << ", beta = " << p.beta << ", gamma = " << p.gamma
+              << " (rho_inf = " << std::round(p.rho_infinity() * 1e4) / 1e4
+              << "), scaling " << (scene.settings.integrator.scaling ? "on" : "off") << "\n";
+    for (const auto& w : scene.warnings) std::cout << "  warning: " << w << "\n";
+  }
+  alphaflex::RunOptions opt;
+  opt.outdir = cl.outdir;
+  opt.exit_comm = exit_comm;
+  opt.exit_timeout = exit_timeout;
+  double description_mb = resident_mb() - before_mb, largest_mb = 0.0;
+  MPI_Allreduce(&description_mb, &largest_mb, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  alphaflex::RunSummary sum = alphaflex::run_simulation(scene, opt, PETSC_COMM_WORLD);
+  sum.scene_memory_mb = largest_mb;
+  if (rank == 0) {
+    if (sum.projection > 1e-12) std::cout << "  consistent start: initial coordinates moved by at most " << sum.projection << "\n";
+    std::cout << alphaflex::format_summary(scene, sum);
+  }
+}
+
+// `alphaflex study` (docs/study.md): every rank reads the study and agrees it is valid (as for a
+// scene), then all run it together; rank 0 writes the files.
+void study_command(const CommandLine& cl, int rank, std::string& message) {
+  alphaflex::study::StudySpec spec;
+  int ok = 1;
+  try {
+    spec = alphaflex::study::read_study(cl.scene, cl.study_file, cl.study_overrides);
+  } catch (const alphaflex::InputError& e) {
+    ok = 0;
+    message = e.what();
+  }
+  int all_ok = 1;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  if (!all_ok) throw alphaflex::InputError(message.empty() ? cl.scene + ": unreadable on another rank" : message);
+  alphaflex::study::StudyOptions sopt;
+  sopt.outdir = cl.outdir;
+  sopt.scene_overrides = cl.overrides;
+  sopt.plots = cl.plots;
+  const auto res = alphaflex::study::run_study(spec, sopt, PETSC_COMM_WORLD);
+  if (rank == 0)
+    for (const auto& f : res.files) std::cout << "wrote " << f << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,8 +174,11 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  if (cl.error.empty() && cl.command != "run") cl.error = cl.command.empty() ? "no command given" : "unknown command '" + cl.command + "'";
-  if (cl.error.empty() && cl.scene.empty()) cl.error = "run needs a scene file";
+  if (cl.error.empty() && cl.command != "run" && cl.command != "study")
+    cl.error = cl.command.empty() ? "no command given" : "unknown command '" + cl.command + "'";
+  if (cl.error.empty() && cl.scene.empty()) cl.error = cl.command + " needs a scene file";
+  if (cl.error.empty() && cl.command == "run" && cl.study_options)
+    cl.error = "--study, --study-set and --no-plots are options of `alphaflex study`";
   if (!cl.error.empty()) {
     std::cerr << "alphaflex: " << cl.error << "\n\n" << kUsage;
     return 2;
@@ -111,42 +200,10 @@ int main(int argc, char** argv) {
   int code = 0;
   std::string message;
   try {
-    // Every rank reads the scene; they must agree that it is valid before anything collective.
-    alphaflex::Scene scene;
-    int ok = 1;
-    // The scene's whole model is built on every rank (docs/architecture.md): its memory is the
-    // replicated part of a parallel run, reported with the summary.
-    const double before_mb = resident_mb();
-    try {
-      scene = alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD);
-    } catch (const alphaflex::InputError& e) {
-      ok = 0;
-      message = e.what();
-    }
-    int all_ok = 1;
-    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-    if (!all_ok) throw alphaflex::InputError(message.empty() ? cl.scene + ": unreadable on another rank" : message);
-
-    if (rank == 0) {
-      const auto& p = scene.settings.parameters;
-      std::cout << "alphaflex: " << scene.name << " (" << cl.scene << ") on " << size << " rank(s)\n"
-                << "  scheme " << p.scheme << ": alpha_m = " << p.alpha_m << ", alpha_f = " << p.alpha_f
-                << ", beta = " << p.beta << ", gamma = " << p.gamma
-                << " (rho_inf = " << std::round(p.rho_infinity() * 1e4) / 1e4
-                << "), scaling " << (scene.settings.integrator.scaling ? "on" : "off") << "\n";
-      for (const auto& w : scene.warnings) std::cout << "  warning: " << w << "\n";
-    }
-    alphaflex::RunOptions opt;
-    opt.outdir = cl.outdir;
-    opt.exit_comm = exit_comm;
-    opt.exit_timeout = exit_timeout;
-    double description_mb = resident_mb() - before_mb, largest_mb = 0.0;
-    MPI_Allreduce(&description_mb, &largest_mb, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
-    alphaflex::RunSummary sum = alphaflex::run_simulation(scene, opt, PETSC_COMM_WORLD);
-    sum.scene_memory_mb = largest_mb;
-    if (rank == 0) {
-      if (sum.projection > 1e-12) std::cout << "  consistent start: initial coordinates moved by at most " << sum.projection << "\n";
-      std::cout << alphaflex::format_summary(scene, sum);
+    if (cl.command == "study") {
+      study_command(cl, rank, message);
+    } else {
+      run_command(cl, rank, size, exit_comm, exit_timeout, message);
     }
   } catch (const alphaflex::InputError& e) {
     code = 1;

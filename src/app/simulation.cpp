@@ -106,6 +106,8 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   std::vector<double> values;
   auto record = [&](const MechanicalState& st, bool fields) {
     values = sensor_values(sub, st);
+    // The observer sees the whole state in model order (a gather, O(model), only when it is set).
+    if (opt.on_step) opt.on_step(sub.size() == 1 ? st : sub.gather(st));
     if (opt.keep_history) {
       sum.times_out.push_back(st.t);
       sum.sensor_history.push_back(values);
@@ -132,6 +134,8 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
     sum.mumps = solver.statistics();
+    sum.workspace_retries = solver.workspace_retries();
+    sum.workspace_percent = solver.workspace_percent();
     // Peak resident memory of every rank (getrusage: the whole process, in KB on Linux).
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
@@ -356,6 +360,9 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << "  MUMPS               " << s.mumps.entries << " entries in the factors, " << s.mumps.flops
        << " flop per factorization, " << s.mumps.memory_sum_mb << " MB in all (" << s.mumps.memory_max_mb
        << " MB on the largest rank)\n";
+  if (s.workspace_retries > 0)
+    os << "  MUMPS workspace     " << s.workspace_retries << " factorizations repeated with more workspace (ICNTL(14) now "
+       << s.workspace_percent << " %)\n";
   os << "  memory              peak " << std::setprecision(4) << s.peak_memory_mb << " MB resident in all ranks ("
      << s.peak_memory_max_mb << " MB largest rank)";
   if (s.scene_memory_mb >= 0.0) os << ", " << s.scene_memory_mb << " MB of it per rank for the scene's whole model";

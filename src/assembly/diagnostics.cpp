@@ -152,6 +152,8 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
   // solves [[M, Φ_qᵀ],[Φ_q, 0]] for q̈0 and λ0, which is singular there even if springs act (a
   // massless point on springs alone would need a static solve). O(n³): small models only.
   if (m.num_dofs() > kDenseLimit) {
+    // Without a finding there is nothing to report: a note alone would read as a diagnosis.
+    if (os.str().empty()) return "";
     os << "(the search for coordinates that nothing acts on is skipped above " << kDenseLimit << " coordinates)";
     return os.str();
   }

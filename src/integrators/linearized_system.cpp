@@ -54,7 +54,8 @@ ModelVector LinearizedSystem::solve(const MechanicalState& s, const AssemblyCoef
   if (!solver_.failure().empty()) {
     // Name the cause (redundant joints, coordinates nothing acts on) instead of a MUMPS code; at
     // the start it is the model as given, i.e. bad input.
-    const std::string why = diagnose_singular_system(sys_.subdomain(), s);
+    // A workspace failure is not a property of the model: no diagnosis of it then.
+    const std::string why = solver_.workspace_failure() ? std::string() : diagnose_singular_system(sys_.subdomain(), s);
     if (initializing && !why.empty()) throw InputError("the model is singular at t = 0:\n  " + why);
     std::ostringstream os;
     os << "the iteration matrix could not be factored at t = " << s.t << " s: " << solver_.failure();

@@ -416,7 +416,8 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   scene.file = label;
   if (!root.IsMap()) rd.fail(root, "(top level)", "expected a map of sections (solver, bodies, joints, ...)");
   rd.keys(root, "(top level)", {"name", "description", "parameters", "dimension", "gravity", "load", "solver", "output",
-                                "mesh", "beams", "shells", "bodies", "joints", "forces", "sensors"});
+                                "mesh", "beams", "shells", "bodies", "joints", "forces", "sensors", "study"});
+  // `study:` is read by `alphaflex study` (study/study_spec.hpp); a run ignores it.
   rd.read_parameters(root["parameters"]);
   scene.name = root["name"] ? rd.text(root["name"], "name")
                             : std::filesystem::path(label).stem().string();

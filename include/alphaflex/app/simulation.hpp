@@ -3,6 +3,7 @@
 // Used by the `alphaflex run` command and by the tests (in-process runs of scenes).
 #include <mpi.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ struct RunOptions {
   /// some ranks caught ends the job (MPI_Abort) after `exit_timeout` s. MPI_COMM_NULL: no check.
   MPI_Comm exit_comm = MPI_COMM_NULL;
   double exit_timeout = 5.0;
+  /// Called on every rank with the state (model order, as RunSummary::final_state) at t = 0 and
+  /// after every converged step, load steps included; the study module uses it for histories
+  /// of multipliers and strain energies. Empty: not called.
+  std::function<void(const MechanicalState&)> on_step;
 };
 
 struct RunSummary {
@@ -45,6 +50,7 @@ struct RunSummary {
   int edge_cut = 0;                        ///< couplings (element/joint node pairs) cut by the partition
   std::vector<int> unknowns_per_rank, ghosts_per_rank;  ///< owned unknowns, ghost nodes
   FactorStatistics mumps;                  ///< of the last factorization
+  int workspace_retries = 0, workspace_percent = 0;  ///< MUMPS refactorizations with more workspace, ICNTL(14) now
   double peak_memory_mb = 0.0, peak_memory_max_mb = 0.0;  ///< peak resident set: sum, largest rank
   /// Resident memory that reading the scene (and its mesh) and building its whole model took on
   /// the largest rank: the part every rank holds whatever their number (set by the command).

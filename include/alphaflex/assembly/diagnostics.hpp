@@ -28,8 +28,9 @@ std::vector<RedundantEquation> find_redundant_constraints(const Model& model, co
 /// max |Φ(q, t)| over all joint equations (m or rad).
 double constraint_violation(const Model& model, const MechanicalState& s);
 
-/// Human-readable diagnosis of a singular saddle-point matrix at state s; empty if none found or
-/// if the model is too large for the dense check (then says so).
+/// Human-readable diagnosis of a singular saddle-point matrix at state s; empty if nothing was
+/// found (above 2000 coordinates the dense search for massless motion is skipped: a note says so
+/// next to other findings).
 std::string diagnose_singular_system(const Model& model, const MechanicalState& s);
 
 // The same on a distributed model, from each rank's local state (collective; every rank gets the

@@ -27,13 +27,23 @@ class LinearSolver {
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
 
-  /// Numerical factorization of A (symbolic analysis only the first time).
+  /// Numerical factorization of A (symbolic analysis only the first time). When MUMPS reports that
+  /// its workspace was too small (INFOG(1) = −8, −9, −11, −12, −14, −15, −17, −20: the estimate of
+  /// the analysis did not cover the pivoting), the factorization is repeated with ICNTL(14) doubled,
+  /// up to 5 times (20 % → 640 % over the estimate), before it is reported as a failure.
   PetscErrorCode factor(Mat A);
   /// x = A⁻¹ b with the last factorization.
   PetscErrorCode solve(Vec b, Vec x);
 
   /// Empty when the last factor/solve succeeded; otherwise what failed, with MUMPS' INFOG codes.
   const std::string& failure() const { return failure_; }
+  /// True if the last failure was MUMPS running out of workspace even after the retries (not a
+  /// singular matrix: no diagnosis of the model is due).
+  bool workspace_failure() const { return workspace_failure_; }
+  /// Factorizations repeated with more MUMPS workspace (ICNTL(14) doubled) after INFOG(1) said the
+  /// estimate was too small; and the ICNTL(14) in use now (percent over MUMPS' estimate).
+  int workspace_retries() const { return workspace_retries_; }
+  int workspace_percent() const { return icntl14_; }
   /// Number of symbolic analyses and numeric factorizations done so far (0 when the options
   /// replace the LU by an iterative method).
   int symbolic_count() const { return symbolic_; }
@@ -50,6 +60,8 @@ class LinearSolver {
   int symbolic_ = 0, numeric_ = 0;
   PetscObjectState last_state_ = -1;
   FactorStatistics stats_;
+  bool workspace_failure_ = false;
+  int workspace_retries_ = 0, icntl14_ = 0;
 };
 
 }  // namespace alphaflex

@@ -1,0 +1,995 @@
+#include "alphaflex/study/study.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "alphaflex/app/simulation.hpp"
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/io/scene.hpp"
+#include "alphaflex/study/andrews_ida.hpp"
+#include "alphaflex/study/cpu_time.hpp"
+#include "alphaflex/study/iteration_matrix.hpp"
+#include "alphaflex/study/measures.hpp"
+#include "alphaflex/study/strain_energy.hpp"
+
+#ifndef ALPHAFLEX_SOURCE_DIR
+#define ALPHAFLEX_SOURCE_DIR "."
+#endif
+
+namespace alphaflex::study {
+
+double StudyRow::get(const std::string& key) const {
+  const auto it = errors.find(key);
+  if (it != errors.end()) return it->second;
+  for (const auto& [k, v] : extra)
+    if (k == key) return v;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string num(double x) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", x);
+  return b;
+}
+std::string sci(double x, int digits = 3) {
+  if (std::isnan(x)) return "-";
+  std::ostringstream os;
+  os << std::scientific << std::setprecision(digits - 1) << x;
+  return os.str();
+}
+std::string sig6(double x) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
+std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+/// A scene read on every rank, with the ranks agreeing on success before anything collective.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides, MPI_Comm comm) {
+  Scene sc;
+  std::string msg;
+  int ok = 1;
+  try {
+    sc = read_scene(path, overrides, comm);  // rank 0 reads the file (and meshes), all parse
+  } catch (const InputError& e) {
+    ok = 0;
+    msg = e.what();
+  }
+  int all = 1;
+  MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm);
+  if (!all) throw InputError(msg.empty() ? path + ": unreadable on another rank" : msg);
+  return sc;
+}
+
+/// A CSV of numbers with a header row after optional '#' comment lines.
+struct CsvTable {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  int column(const std::string& n) const {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == n) return static_cast<int>(i);
+    return -1;
+  }
+};
+
+CsvTable read_numeric_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the reference file");
+  CsvTable t;
+  std::string line;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (!line.empty() && line[0] == '#') continue;
+    break;
+  }
+  std::stringstream hs(line);
+  for (std::string c; std::getline(hs, c, ',');) t.names.push_back(c);
+  if (t.names.empty()) throw InputError(path + ": no header row (expected column names, e.g. t,theta1,...)");
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.empty()) continue;
+    std::vector<double> row;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) {
+      try {
+        size_t used = 0;
+        row.push_back(std::stod(c, &used));
+      } catch (const std::exception&) {
+        throw InputError(path + ":" + std::to_string(lineno) + ": expected a number, got '" + c + "'");
+      }
+    }
+    if (row.size() != t.names.size())
+      throw InputError(path + ":" + std::to_string(lineno) + ": expected " + std::to_string(t.names.size()) +
+                       " values (as many as header columns), got " + std::to_string(row.size()));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+/// What errors are measured against.
+struct Reference {
+  std::string label;
+  std::map<std::string, double> at_end;                 ///< sensor values at t_end
+  std::vector<double> times;                            ///< the file's t column (series)
+  std::map<std::string, std::vector<double>> series;    ///< the file's columns
+  bool has_state = false;
+  MechanicalState state;                                ///< final state of the reference run
+};
+
+/// One alphaflex run and what the study keeps of it.
+struct RunRecord {
+  RunSummary summary;
+  bool ok = true;
+  std::string failure;
+  double cpu = 0.0, wall = 0.0;
+  std::vector<double> t;
+  std::vector<std::vector<double>> sensors;    ///< per step (every step: on_step)
+  std::vector<Eigen::VectorXd> lambda;         ///< per step, if asked
+  std::vector<std::vector<double>> energy;     ///< per step and part, if asked
+  MechanicalState last;                        ///< last converged state
+};
+
+/// What a run must record per step (a work–precision run records only the step count, so that the
+/// observer costs nothing measurable).
+struct RunNeeds {
+  bool sensors = false;
+  bool lambda = false;
+  bool last_state = false;
+  const std::vector<FlexiblePart>* parts = nullptr;
+};
+
+RunRecord run_one(Scene& scene, const RunNeeds& needs, MPI_Comm comm) {
+  RunRecord rec;
+  const Model& model = *scene.model;
+  RunOptions opt;
+  opt.write_results = false;
+  opt.verbose = false;
+  opt.on_step = [&](const MechanicalState& st) {
+    rec.t.push_back(st.t);
+    if (needs.sensors) {
+      std::vector<double> v;
+      for (const auto& sn : model.sensors()) v.push_back(sn.evaluate(model, st));
+      rec.sensors.push_back(std::move(v));
+    }
+    if (needs.lambda) rec.lambda.push_back(model.num_multipliers() > 0 ? st.lambda : st.qdd);
+    if (needs.parts) rec.energy.push_back(strain_energies(model, *needs.parts, st));
+    if (needs.last_state) rec.last = st;
+  };
+  const double c0 = process_cpu_seconds(), w0 = MPI_Wtime();
+  try {
+    rec.summary = run_simulation(scene, opt, comm);
+  } catch (const SolverError& e) {
+    rec.ok = false;
+    rec.failure = first_line(e.what());
+  }
+  double cpu = process_cpu_seconds() - c0;
+  MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_SUM, comm);
+  rec.cpu = cpu;
+  rec.wall = MPI_Wtime() - w0;
+  return rec;
+}
+
+double error_of(double value, double ref, bool relative) {
+  const double d = std::fabs(value - ref);
+  return relative && std::fabs(ref) > 0.0 ? d / std::fabs(ref) : d;
+}
+
+double inf_norm(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+
+/// State errors (∞-norms) of a final state against the reference run's.
+void state_errors(const Model& model, const MechanicalState& s, const MechanicalState& ref, bool relative,
+                  std::map<std::string, double>& out) {
+  auto norm_err = [&](double d, double scale) { return relative && scale > 0.0 ? d / scale : d; };
+  out["q"] = norm_err(inf_norm(model.difference(ref.q, s.q)), inf_norm(ref.q));
+  out["v"] = norm_err(inf_norm(s.v - ref.v), inf_norm(ref.v));
+  if (model.num_multipliers() > 0) out["lambda"] = norm_err(inf_norm(s.lambda - ref.lambda), inf_norm(ref.lambda));
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+class Study {
+ public:
+  Study(const StudySpec& spec, const StudyOptions& opt, MPI_Comm comm) : spec_(spec), opt_(opt), comm_(comm) {
+    MPI_Comm_rank(comm, &rank_);
+    MPI_Comm_size(comm, &size_);
+    res_.spec = spec;
+  }
+
+  StudyResult run() {
+    prepare_output();
+    check_settings();
+    switch (spec_.mode) {
+      case StudyMode::Convergence: convergence(); break;
+      case StudyMode::Oscillation: oscillation(); break;
+      case StudyMode::BlowUp: blow_up(); break;
+      case StudyMode::Fidelity: fidelity(); break;
+    }
+    write_outputs();
+    return res_;
+  }
+
+ private:
+  // ------------------------------------------------------------------ set-up
+  void say(const std::string& line) const {
+    if (opt_.verbose && rank_ == 0) std::cout << line << std::endl;
+  }
+
+  void prepare_output() {
+    int ok = 1;
+    std::string err;
+    if (rank_ == 0) {
+      std::error_code ec;
+      fs::create_directories(opt_.outdir, ec);
+      const std::string probe = (fs::path(opt_.outdir) / (".alphaflex_study_probe")).string();
+      std::ofstream f(probe);
+      if (!f) {
+        ok = 0;
+        err = opt_.outdir + ": cannot write the study's output files there (" +
+              (ec ? ec.message() : std::string("not writable")) + ")";
+      } else {
+        f.close();
+        fs::remove(probe, ec);
+      }
+    }
+    MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
+    if (!ok) throw InputError(err.empty() ? "cannot write the study's output files (see rank 0)" : err);
+  }
+
+  /// Overrides of one run: the setting's solver map, the study's `set:`, the command line's --set,
+  /// the setting's `set:` list, then the study's h and t_end.
+  std::vector<std::string> overrides(const SchemeSetting& st, double h) const {
+    std::vector<std::string> o;
+    if (!st.solver_override.empty()) o.push_back(st.solver_override);
+    o.insert(o.end(), spec_.overrides.begin(), spec_.overrides.end());
+    o.insert(o.end(), opt_.scene_overrides.begin(), opt_.scene_overrides.end());
+    o.insert(o.end(), st.overrides.begin(), st.overrides.end());
+    if (h > 0.0) o.push_back("solver.h=" + num(h));
+    if (spec_.t_end > 0.0) o.push_back("solver.t_end=" + num(spec_.t_end));
+    return o;
+  }
+
+  Scene scene_for(const SchemeSetting& st, double h, const std::string& scene_file = "") {
+    Scene sc;
+    try {
+      sc = load_scene(scene_file.empty() ? spec_.scene : scene_file, overrides(st, h), comm_);
+    } catch (const InputError& e) {
+      throw InputError(std::string(e.what()) + "\n  (in the runs of " + st.where + ")");
+    }
+    if (!sc.warnings.empty() && !st.force) {
+      std::string w;
+      for (const auto& s : sc.warnings) w += "\n  " + s;
+      throw InputError(st.where + ": the scheme's parameters fail the checks a run warns about:" + w +
+                       "\n  A study runs such a setting only when told: add `force: on` to it (mode blow_up shows "
+                       "what happens).");
+    }
+    return sc;
+  }
+
+  /// Every setting (or variant) read once before any run, so that bad input stops the study at once.
+  void check_settings() {
+    const double h = spec_.h.empty() ? 0.0 : spec_.h.front();
+    if (spec_.mode == StudyMode::Fidelity) {
+      for (const auto& v : spec_.variants) {
+        SchemeSetting vs = spec_.settings.front();
+        vs.overrides.insert(vs.overrides.end(), v.overrides.begin(), v.overrides.end());
+        vs.where = v.where;
+        scene_for(vs, h, v.scene);
+      }
+      return;
+    }
+    for (const auto& st : spec_.settings) scene_for(st, h);
+  }
+
+  const SchemeSetting& reference_setting() const {
+    for (const auto& st : spec_.settings)
+      if (st.label == spec_.reference.setting) return st;
+    return spec_.settings.front();
+  }
+
+  /// Reference values at t_end (file) and the reference run (if asked), and the sensors to report.
+  void prepare_reference(const Scene& base, double t_end) {
+    Reference& r = ref_;
+    std::vector<std::string> parts;
+    if (!spec_.reference.file.empty()) {
+      const CsvTable tab = read_numeric_csv(spec_.reference.file);
+      const int tc = tab.column("t");
+      if (tc < 0) {
+        if (tab.rows.size() != 1)
+          throw InputError(spec_.reference.file + ": a reference without a t column must have one row (the values at t_end)");
+        for (size_t k = 0; k < tab.names.size(); ++k) r.at_end[tab.names[k]] = tab.rows[0][k];
+      } else {
+        const std::vector<double>* row_end = nullptr;
+        for (const auto& row : tab.rows) {
+          r.times.push_back(row[static_cast<size_t>(tc)]);
+          if (std::fabs(row[static_cast<size_t>(tc)] - t_end) <= 1e-9 * std::max(1.0, t_end)) row_end = &row;
+        }
+        for (size_t k = 0; k < tab.names.size(); ++k) {
+          if (static_cast<int>(k) == tc) continue;
+          std::vector<double> col;
+          for (const auto& row : tab.rows) col.push_back(row[k]);
+          r.series[tab.names[k]] = col;
+        }
+        if (!row_end && spec_.mode == StudyMode::Convergence)
+          throw InputError(spec_.reference.file + ": no row at t = " + sig6(t_end) + " s, the study's final time (rows from " +
+                           (r.times.empty() ? std::string("-") : sig6(r.times.front())) + " to " +
+                           (r.times.empty() ? std::string("-") : sig6(r.times.back())) + " s)");
+        if (row_end)
+          for (size_t k = 0; k < tab.names.size(); ++k)
+            if (static_cast<int>(k) != tc) r.at_end[tab.names[k]] = (*row_end)[k];
+      }
+      parts.push_back(spec_.reference.file + " (" + spec_.reference.source + ")");
+    }
+    if (spec_.reference.h > 0.0) {
+      const SchemeSetting& st = reference_setting();
+      std::ostringstream os;
+      os << "alphaflex run at h = " << spec_.reference.h << " s with setting '" << st.label << "'";
+      say("reference run: " + os.str() + " ...");
+      Scene sc = scene_for(st, spec_.reference.h);
+      RunRecord rec = run_one(sc, {}, comm_);
+      if (!rec.ok) throw SolverError("the study's reference run (" + os.str() + ") failed: " + rec.failure);
+      r.has_state = true;
+      r.state = rec.summary.final_state;
+      for (size_t k = 0; k < rec.summary.sensor_names.size(); ++k)
+        if (!r.at_end.count(rec.summary.sensor_names[k])) r.at_end[rec.summary.sensor_names[k]] = rec.summary.final_sensors[k];
+      os << ", " << rec.summary.steps << " steps, CPU " << std::setprecision(3) << rec.cpu << " s";
+      parts.push_back(os.str() + (spec_.reference.file.empty() ? "" : " (state errors q, v, lambda and sensors the file lacks)"));
+    }
+    for (size_t i = 0; i < parts.size(); ++i) r.label += (i ? "; " : "") + parts[i];
+    res_.reference_label = r.label;
+
+    // Sensors to report: those asked (each must exist), else every sensor with a reference value.
+    std::vector<std::string> names;
+    for (const auto& sn : base.model->sensors()) names.push_back(sn.name);
+    if (!spec_.sensors.empty()) {
+      for (const auto& s : spec_.sensors) {
+        if (std::find(names.begin(), names.end(), s) == names.end()) {
+          std::string l;
+          for (const auto& n : names) l += (l.empty() ? "" : ", ") + n;
+          throw InputError(spec_.file + ": study.sensors: the scene has no sensor named '" + s + "' (its sensors: " + l + ")");
+        }
+        if (spec_.mode == StudyMode::Convergence && !r.at_end.count(s))
+          throw InputError(spec_.file + ": study.sensors: '" + s + "' has no reference value (the reference file has no column '" +
+                           s + "'; give study.reference.h for a reference run)");
+      }
+      sensors_ = spec_.sensors;
+    } else {
+      for (const auto& n : names)
+        if (spec_.mode != StudyMode::Convergence || r.at_end.count(n)) sensors_.push_back(n);
+    }
+    if (r.has_state) res_.error_names = {"q", "v"};
+    if (r.has_state && base.model->num_multipliers() > 0) res_.error_names.push_back("lambda");
+    for (const auto& s : sensors_) res_.error_names.push_back(s);
+  }
+
+  StudyRow row_for(const Scene& sc, const SchemeSetting& st, double h, const RunRecord& rec) const {
+    StudyRow row;
+    row.label = st.label;
+    row.params = sc.settings.parameters;
+    row.scaling = sc.settings.integrator.scaling;
+    row.h = h;
+    row.t_end = sc.settings.t_end;
+    row.ok = rec.ok;
+    row.failure = rec.failure;
+    row.steps = rec.ok ? rec.summary.steps : static_cast<long>(rec.t.size()) - 1;
+    row.newton_total = rec.summary.newton_total;
+    row.newton_max = rec.summary.newton_max;
+    row.cpu = rec.cpu;
+    row.wall = rec.wall;
+    return row;
+  }
+
+  void print_row(const StudyRow& r) const {
+    if (!opt_.verbose || rank_ != 0) return;
+    std::ostringstream os;
+    os << "  [" << r.label << "] ";
+    if (!std::isnan(r.h)) os << "h = " << r.h << " s: ";
+    if (!std::isnan(r.tol)) os << "tol = " << r.tol << ": ";
+    os << r.steps << " steps";
+    if (r.method == "alphaflex" && r.steps > 0 && r.ok)
+      os << ", Newton " << std::fixed << std::setprecision(2) << static_cast<double>(r.newton_total) / r.steps
+         << "/step" << std::defaultfloat;
+    os << ", CPU " << std::setprecision(3) << r.cpu << " s";
+    if (!r.ok) os << ", FAILED: " << r.failure;
+    for (const auto& n : res_.error_names) {
+      const auto it = r.errors.find(n);
+      if (it != r.errors.end()) os << "; err " << n << " " << sci(it->second);
+    }
+    for (const auto& [k, v] : r.extra)
+      os << "; " << k << " " << (v == std::floor(v) && std::fabs(v) < 1e9 ? std::to_string(static_cast<long>(v)) : sci(v));
+    std::cout << os.str() << std::endl;
+  }
+
+  // ------------------------------------------------------------------ modes
+  void convergence() {
+    Scene base = scene_for(spec_.settings.front(), spec_.h.front());
+    const double t_end = base.settings.t_end;
+    prepare_reference(base, t_end);
+    say("study " + spec_.name + ": convergence, " + std::to_string(spec_.settings.size()) + " setting(s) x " +
+        std::to_string(spec_.h.size()) + " step size(s); reference: " + res_.reference_label);
+    for (const auto& st : spec_.settings) {
+      for (double h : spec_.h) {
+        Scene sc = scene_for(st, h);
+        RunNeeds needs;
+        needs.last_state = spec_.condition_number;
+        RunRecord rec = run_one(sc, needs, comm_);
+        StudyRow row = row_for(sc, st, h, rec);
+        if (rec.ok) {
+          const auto& names = rec.summary.sensor_names;
+          for (const auto& s : sensors_) {
+            const size_t k = static_cast<size_t>(std::find(names.begin(), names.end(), s) - names.begin());
+            row.errors[s] = error_of(rec.summary.final_sensors[k], ref_.at_end.at(s), spec_.relative_errors);
+          }
+          if (ref_.has_state) state_errors(*sc.model, rec.summary.final_state, ref_.state, spec_.relative_errors, row.errors);
+        }
+        if (spec_.condition_number && rec.t.size() > 0) {
+          const ConditionNumbers c = iteration_matrix_condition(*sc.model, rec.last, row.params, h, row.scaling, comm_);
+          row.extra.emplace_back("cond_2norm", c.two_norm);
+          row.extra.emplace_back("cond_mumps1", c.mumps_cond1);
+          row.extra.emplace_back("cond_mumps2", c.mumps_cond2);
+        }
+        print_row(row);
+        res_.rows.push_back(row);
+      }
+    }
+    if (rank_ == 0) {
+      // Rank 0 alone: a failing peer must not throw past the collective calls that follow.
+      try {
+        run_peers(t_end);
+      } catch (const std::exception& e) {
+        warn(std::string("the peers stopped: ") + e.what());
+      }
+    }
+    fit_slopes();
+  }
+
+  void run_peers(double t_end) {
+    const PeerSpec& p = spec_.peers;
+    if (p.problem.empty()) return;
+    for (double tol : p.ida) {
+      const PeerResult r = andrews_ida(tol, tol, t_end);
+      add_peer_row(r, "IDA");
+    }
+    if (!p.radau.empty()) {
+      const std::string script = std::string(ALPHAFLEX_SOURCE_DIR) + "/scripts/study_radau_andrews.py";
+      const std::string out = (fs::path(opt_.outdir) / (spec_.name + "_radau.csv")).string();
+      std::string tols;
+      for (double t : p.radau) tols += (tols.empty() ? "" : ",") + num(t);
+      std::error_code ec;
+      if (!fs::is_regular_file(script, ec) || !python_ok()) {
+        warn("Radau peer skipped: " + (python_ok() ? script + " not found" : spec_.python + " not found"));
+        return;
+      }
+      const std::string cmd = shell_quote(python()) + " " + shell_quote(script) + " --tolerances " + tols +
+                              " --t-end " + num(t_end) + " --out " + shell_quote(out) + (opt_.verbose ? "" : " > /dev/null");
+      std::cout.flush();
+      const int rc = std::system(cmd.c_str());
+      if (rc != 0) {
+        warn("Radau peer failed (" + cmd + " returned " + std::to_string(rc) + ")");
+        return;
+      }
+      const MixedTable tab = read_numeric_csv_mixed(out);
+      for (const auto& row : tab.rows) add_peer_row(row, "Radau");
+      res_.files.push_back(out);
+    }
+  }
+
+  // The Radau CSV has text columns (method, message): read them as strings.
+  struct MixedTable {
+    std::vector<std::string> names;
+    std::vector<std::vector<std::string>> rows;
+  };
+  static MixedTable read_numeric_csv_mixed(const std::string& path) {
+    MixedTable t;
+    std::ifstream in(path);
+    std::string line;
+    if (!std::getline(in, line)) return t;
+    std::stringstream hs(line);
+    for (std::string c; std::getline(hs, c, ',');) t.names.push_back(c);
+    while (std::getline(in, line)) {
+      std::vector<std::string> row;
+      std::stringstream ls(line);
+      for (std::string c; std::getline(ls, c, ',');) row.push_back(c);
+      if (row.size() == t.names.size()) t.rows.push_back(row);
+    }
+    return t;
+  }
+
+  void add_peer_row(const std::vector<std::string>& row, const std::string& label) {
+    // Columns of scripts/study_radau_andrews.py: method,rtol,atol,ok,cpu,steps,nfev,njev,nlu,message,values...
+    PeerResult r;
+    static const std::vector<std::string> head{"method", "rtol", "atol", "ok", "cpu", "steps", "nfev", "njev", "nlu", "message"};
+    r.method = row[0];
+    r.rtol = std::stod(row[1]);
+    r.atol = std::stod(row[2]);
+    r.ok = row[3] == "1";
+    r.cpu = std::stod(row[4]);
+    r.steps = std::stol(row[5]);
+    r.residual_evals = std::stol(row[6]);
+    r.jacobian_evals = std::stol(row[7]);
+    r.failure = r.ok ? "" : row[9];
+    const std::vector<std::string> names{"beta", "Theta", "gamma", "Phi", "delta", "Omega", "epsilon", "lambda1",
+                                         "lambda2", "lambda3", "lambda4", "lambda5", "lambda6"};
+    for (size_t k = 0; k < names.size() && head.size() + k < row.size(); ++k) {
+      r.names.push_back(names[k]);
+      r.values.push_back(std::stod(row[head.size() + k]));
+    }
+    add_peer_row(r, label);
+  }
+
+  void add_peer_row(const PeerResult& p, const std::string& label) {
+    StudyRow row;
+    row.method = p.method;
+    row.label = label;
+    row.tol = p.rtol;
+    row.t_end = spec_.t_end;
+    row.ok = p.ok;
+    row.failure = p.failure;
+    row.steps = p.steps;
+    row.cpu = p.cpu;
+    row.extra.emplace_back("residual_evals", static_cast<double>(p.residual_evals));
+    row.extra.emplace_back("jacobian_evals", static_cast<double>(p.jacobian_evals));
+    if (p.ok)
+      for (const auto& s : sensors_)
+        for (size_t k = 0; k < p.names.size(); ++k)
+          if (p.names[k] == s) row.errors[s] = error_of(p.values[k], ref_.at_end.at(s), spec_.relative_errors);
+    print_row(row);
+    res_.rows.push_back(row);
+  }
+
+  void fit_slopes() {
+    for (const auto& st : spec_.settings)
+      for (const auto& e : res_.error_names) {
+        std::vector<double> hs, es;
+        for (const auto& r : res_.rows)
+          if (r.method == "alphaflex" && r.label == st.label && r.ok && r.errors.count(e)) {
+            hs.push_back(r.h);
+            es.push_back(r.errors.at(e));
+          }
+        if (hs.size() >= 2) res_.slopes[st.label][e] = loglog_slope(hs, es);
+      }
+    if (!opt_.verbose || rank_ != 0 || res_.slopes.empty()) return;
+    std::cout << "observed orders (least-squares slope of log error vs log h over all h; theory: 2 for "
+                 "generalized-alpha with rho_inf < 1, eq. 38):\n";
+    for (const auto& st : spec_.settings) {
+      if (!res_.slopes.count(st.label)) continue;
+      std::ostringstream os;
+      os << "  " << st.label << ":";
+      for (const auto& e : res_.error_names)
+        if (res_.slopes[st.label].count(e)) os << " " << e << " " << std::fixed << std::setprecision(2) << res_.slopes[st.label][e];
+      std::cout << os.str() << "\n";
+    }
+    std::cout.flush();
+  }
+
+  void oscillation() {
+    Scene base = scene_for(spec_.settings.front(), spec_.h.front());
+    const double t_end = base.settings.t_end;
+    if (!spec_.reference.file.empty() || spec_.reference.h > 0.0) prepare_reference(base, t_end);
+    else prepare_sensors_only(base);
+    say("study " + spec_.name + ": oscillation, " + std::to_string(spec_.settings.size()) + " setting(s) x " +
+        std::to_string(spec_.h.size()) + " step size(s)");
+    for (double h : spec_.h) {
+      std::map<std::string, double> first;
+      for (const auto& st : spec_.settings) {
+        Scene sc = scene_for(st, h);
+        RunNeeds needs;
+        needs.lambda = true;
+        needs.sensors = true;
+        RunRecord rec = run_one(sc, needs, comm_);
+        StudyRow row = row_for(sc, st, h, rec);
+        const double span = rec.t.empty() ? 0.0 : rec.t.back() - rec.t.front();
+        const auto& names = sc.model->sensors();
+        for (const auto& s : sensors_) {
+          size_t k = 0;
+          while (names[k].name != s) ++k;
+          std::vector<double> x;
+          for (const auto& v : rec.sensors) x.push_back(v[k]);
+          const double tv = span > 0 ? total_variation(x) / span : kNaN;
+          row.extra.emplace_back("tv_" + s, tv);
+          row.extra.emplace_back("d2_" + s, rms_second_difference(x));
+          if (ref_.series.count(s)) row.extra.emplace_back("rmserr_" + s, rms_error_against_series(rec.t, x, s));
+          if (!first.count("tv_" + s)) first["tv_" + s] = tv;
+          row.extra.emplace_back("tv_ratio_" + s, tv / first["tv_" + s]);
+        }
+        // The multipliers as a whole: the largest total variation rate over their components.
+        double tvl = 0.0, d2l = 0.0;
+        const int nm = rec.lambda.empty() ? 0 : static_cast<int>(rec.lambda.front().size());
+        for (int j = 0; j < nm; ++j) {
+          std::vector<double> x;
+          for (const auto& l : rec.lambda) x.push_back(l[j]);
+          tvl = std::max(tvl, span > 0 ? total_variation(x) / span : kNaN);
+          d2l = std::max(d2l, rms_second_difference(x));
+        }
+        row.extra.emplace_back("tv_lambda_max", tvl);
+        row.extra.emplace_back("d2_lambda_max", d2l);
+        if (!first.count("tv_lambda_max")) first["tv_lambda_max"] = tvl;
+        row.extra.emplace_back("tv_ratio_lambda_max", tvl / first["tv_lambda_max"]);
+        print_row(row);
+        res_.rows.push_back(row);
+        keep_history(st.label, h, rec, *sc.model);
+      }
+    }
+  }
+
+  double rms_error_against_series(const std::vector<double>& t, const std::vector<double>& x, const std::string& s) const {
+    // At the run's output times that are also rows of the reference file (no interpolation).
+    const auto& rt = ref_.times;
+    const auto& rv = ref_.series.at(s);
+    double sum = 0.0;
+    int n = 0;
+    size_t j = 0;
+    for (size_t i = 0; i < t.size(); ++i) {
+      while (j < rt.size() && rt[j] < t[i] - 1e-9 * std::max(1.0, std::fabs(t[i]))) ++j;
+      if (j < rt.size() && std::fabs(rt[j] - t[i]) <= 1e-9 * std::max(1.0, std::fabs(t[i]))) {
+        sum += (x[i] - rv[j]) * (x[i] - rv[j]);
+        ++n;
+      }
+    }
+    return n ? std::sqrt(sum / n) : kNaN;
+  }
+
+  void prepare_sensors_only(const Scene& base) {
+    std::vector<std::string> names;
+    for (const auto& sn : base.model->sensors()) names.push_back(sn.name);
+    if (spec_.sensors.empty()) {
+      sensors_ = names;
+    } else {
+      for (const auto& s : spec_.sensors)
+        if (std::find(names.begin(), names.end(), s) == names.end())
+          throw InputError(spec_.file + ": study.sensors: the scene has no sensor named '" + s + "'");
+      sensors_ = spec_.sensors;
+    }
+    res_.reference_label = "none (stability measures need no reference)";
+  }
+
+  // Time histories for the charts (NAME_history.csv): label, h, step, t, then the sensors.
+  struct History {
+    std::string label;
+    double h;
+    std::vector<double> t;
+    std::vector<std::vector<double>> values;  // per step
+  };
+  std::vector<History> histories_;
+  std::vector<std::string> history_names_;
+  void keep_history(const std::string& label, double h, const RunRecord& rec, const Model& model) {
+    if (rank_ != 0) return;
+    history_names_ = sensors_;
+    std::vector<size_t> idx;
+    for (const auto& s : sensors_) {
+      size_t k = 0;
+      while (model.sensors()[k].name != s) ++k;
+      idx.push_back(k);
+    }
+    History hi{label, h, rec.t, {}};
+    for (const auto& v : rec.sensors) {
+      std::vector<double> row;
+      for (size_t k : idx) row.push_back(v[k]);
+      hi.values.push_back(row);
+    }
+    histories_.push_back(std::move(hi));
+  }
+
+  void blow_up() {
+    Scene base = scene_for(spec_.settings.front(), spec_.h.front());
+    prepare_sensors_only(base);
+    say("study " + spec_.name + ": blow_up, " + std::to_string(spec_.settings.size()) + " setting(s) x " +
+        std::to_string(spec_.h.size()) + " step size(s)");
+    for (const auto& st : spec_.settings)
+      for (double h : spec_.h) {
+        Scene sc = scene_for(st, h);
+        RunNeeds needs;
+        needs.lambda = true;
+        RunRecord rec = run_one(sc, needs, comm_);
+        StudyRow row = row_for(sc, st, h, rec);
+        // Growth measure: g_n = ‖λ_{n+1} − 2λ_n + λ_{n−1}‖∞, O(h²) on a smooth solution, dominated
+        // by a parasitic root ζ of ϱ or σ once |ζ| > 1 (it then grows like |ζ|ⁿ).
+        std::vector<double> g, lam;
+        for (size_t n = 1; n + 1 < rec.lambda.size(); ++n)
+          g.push_back(inf_norm(rec.lambda[n + 1] - 2.0 * rec.lambda[n] + rec.lambda[n - 1]));
+        for (const auto& l : rec.lambda) lam.push_back(inf_norm(l));
+        const AlphaParameters& p = row.params;
+        double rs = 0.0;
+        for (const auto& z : sigma_roots(p)) rs = std::max(rs, std::abs(z));
+        // Linear theory holds while the parasitic mode is small against λ itself: its scale is the
+        // median of ‖λ‖∞ over the first tenth of the run.
+        double scale = std::numeric_limits<double>::infinity();
+        if (lam.size() >= 10) {
+          std::vector<double> head(lam.begin(), lam.begin() + static_cast<long>(lam.size() / 10));
+          std::nth_element(head.begin(), head.begin() + static_cast<long>(head.size() / 2), head.end());
+          scale = head[head.size() / 2];
+        }
+        row.extra.emplace_back("growth_measured", geometric_growth(g, scale));
+        row.extra.emplace_back("growth_predicted", predicted_growth(p));
+        row.extra.emplace_back("root_rho", std::abs(rho_roots(p)[1]));
+        row.extra.emplace_back("root_sigma", rs);
+        row.extra.emplace_back("t_last", rec.t.empty() ? kNaN : rec.t.back());
+        row.extra.emplace_back("lambda_inf_max", lam.empty() ? kNaN : *std::max_element(lam.begin(), lam.end()));
+        print_row(row);
+        res_.rows.push_back(row);
+        if (rank_ == 0) {
+          History hi{st.label, h, {}, {}};
+          for (size_t n = 0; n < rec.t.size(); ++n) {
+            hi.t.push_back(rec.t[n]);
+            const double gn = (n >= 1 && n + 1 < rec.t.size() && n - 1 < g.size()) ? g[n - 1] : kNaN;
+            hi.values.push_back({lam[n], gn});
+          }
+          history_names_ = {"lambda_inf", "d2_lambda_inf"};
+          histories_.push_back(std::move(hi));
+        }
+      }
+  }
+
+  void fidelity() {
+    const SchemeSetting& st = spec_.settings.front();
+    const double h = spec_.h.empty() ? 0.0 : spec_.h.front();
+    struct VariantRun {
+      const ModelVariant* v;
+      RunRecord rec;
+      std::vector<FlexiblePart> parts;
+      std::vector<std::string> sensor_names;
+      int unknowns = 0;
+      StudyRow row;
+    };
+    std::vector<VariantRun> runs;
+    say("study " + spec_.name + ": fidelity, " + std::to_string(spec_.variants.size()) + " model variants");
+    for (const auto& v : spec_.variants) {
+      SchemeSetting vs = st;
+      vs.overrides.insert(vs.overrides.end(), v.overrides.begin(), v.overrides.end());
+      vs.where = v.where;
+      vs.label = v.label;
+      Scene sc = scene_for(vs, h, v.scene);
+      VariantRun vr{&v, {}, flexible_parts(*sc.model), {}, 0, {}};
+      for (const auto& sn : sc.model->sensors()) vr.sensor_names.push_back(sn.name);
+      RunNeeds needs;
+      needs.parts = &vr.parts;
+      needs.sensors = true;
+      vr.rec = run_one(sc, needs, comm_);
+      vr.row = row_for(sc, vs, sc.settings.h, vr.rec);
+      vr.unknowns = vr.rec.summary.unknowns;
+      if (!vr.rec.ok) throw SolverError(v.where + ": the run of this model variant failed: " + vr.rec.failure);
+      runs.push_back(std::move(vr));
+    }
+    // Sensors: those asked, or those every variant has.
+    if (!spec_.sensors.empty()) {
+      sensors_ = spec_.sensors;
+    } else {
+      for (const auto& n : runs.front().sensor_names) {
+        bool all = true;
+        for (const auto& r : runs) all = all && std::count(r.sensor_names.begin(), r.sensor_names.end(), n);
+        if (all) sensors_.push_back(n);
+      }
+    }
+    for (const auto& r : runs)
+      for (const auto& s : sensors_)
+        if (!std::count(r.sensor_names.begin(), r.sensor_names.end(), s))
+          throw InputError(r.v->where + ": the variant's scene has no sensor named '" + s + "' (study.sensors)");
+    const VariantRun* ref = nullptr;
+    for (const auto& r : runs)
+      if (r.v->label == spec_.reference_variant) ref = &r;
+    res_.reference_label = "model variant '" + ref->v->label + "' (" + ref->v->scene + ")";
+    auto column = [](const VariantRun& r, const std::string& s) {
+      const size_t k = static_cast<size_t>(std::find(r.sensor_names.begin(), r.sensor_names.end(), s) - r.sensor_names.begin());
+      std::vector<double> x;
+      for (const auto& v : r.rec.sensors) x.push_back(v[k]);
+      return x;
+    };
+    for (auto& r : runs) {
+      if (r.rec.t.size() != ref->rec.t.size())
+        throw InputError(r.v->where + ": its run has " + std::to_string(r.rec.t.size() - 1) + " steps, the reference variant " +
+                         std::to_string(ref->rec.t.size() - 1) + ": give every variant the same h and t_end");
+      for (const auto& s : sensors_) {
+        const std::vector<double> x = column(r, s), xr = column(*ref, s);
+        double dmax = 0.0, scale = 0.0;
+        for (size_t i = 0; i < x.size(); ++i) {
+          dmax = std::max(dmax, std::fabs(x[i] - xr[i]));
+          scale = std::max(scale, std::fabs(xr[i]));
+        }
+        r.row.errors[s] = spec_.relative_errors && scale > 0 ? dmax / scale : dmax;
+      }
+      r.row.extra.emplace_back("unknowns", r.unknowns);
+      r.row.extra.emplace_back("cpu_ratio", r.rec.cpu / ref->rec.cpu);
+      // Strain energy per part: time average (trapezoid over the steps), peak, shares.
+      const auto& t = r.rec.t;
+      const size_t np = r.parts.size();
+      std::vector<double> mean(np, 0.0), peak(np, 0.0);
+      size_t ipeak = 0;
+      double total_peak = -1.0;
+      for (size_t n = 0; n < t.size(); ++n) {
+        double total = 0.0;
+        for (size_t p = 0; p < np; ++p) {
+          peak[p] = std::max(peak[p], r.rec.energy[n][p]);
+          total += r.rec.energy[n][p];
+          if (n > 0) mean[p] += 0.5 * (r.rec.energy[n][p] + r.rec.energy[n - 1][p]) * (t[n] - t[n - 1]);
+        }
+        if (total > total_peak) {
+          total_peak = total;
+          ipeak = n;
+        }
+      }
+      const double span = t.back() - t.front();
+      double sum_mean = 0.0;
+      for (size_t p = 0; p < np; ++p) sum_mean += (mean[p] /= span);
+      for (size_t p = 0; p < np; ++p) {
+        EnergyRow e;
+        e.variant = r.v->label;
+        e.part = r.parts[p].name;
+        e.kind = r.parts[p].kind;
+        e.elements = static_cast<int>(r.parts[p].elements.size());
+        e.mean = mean[p];
+        e.peak = peak[p];
+        e.share_mean = sum_mean > 0 ? mean[p] / sum_mean : kNaN;
+        e.share_peak = total_peak > 0 ? r.rec.energy[ipeak][p] / total_peak : kNaN;
+        res_.energy.push_back(e);
+      }
+      res_.error_names = sensors_;
+      print_row(r.row);
+      if (opt_.verbose && rank_ == 0)
+        for (const auto& e : res_.energy)
+          if (e.variant == r.v->label)
+            std::cout << "      strain energy of " << e.kind << " '" << e.part << "' (" << e.elements
+                      << " elements): mean " << sci(e.mean) << " J, peak " << sci(e.peak) << " J, share "
+                      << std::fixed << std::setprecision(1) << 100.0 * e.share_mean << " % of the mean, "
+                      << 100.0 * e.share_peak << " % at the peak" << std::defaultfloat << std::endl;
+      res_.rows.push_back(r.row);
+    }
+  }
+
+  // ------------------------------------------------------------------ output
+  void warn(const std::string& w) {
+    res_.warnings.push_back(w);
+    if (rank_ == 0) std::cerr << "alphaflex study: warning: " << w << std::endl;
+  }
+  bool python_ok() const {
+    std::error_code ec;
+    return fs::exists(spec_.python, ec) || spec_.python.find('/') == std::string::npos;
+  }
+  std::string python() const { return spec_.python; }
+
+  std::string csv_path(const std::string& suffix) const {
+    return (fs::path(opt_.outdir) / (spec_.name + suffix)).string();
+  }
+
+  void write_outputs() {
+    int ok = 1;
+    std::string err;
+    if (rank_ == 0) {
+      try {
+        write_csv();
+        if (!histories_.empty()) write_history();
+        if (!res_.energy.empty()) write_energy();
+      } catch (const std::exception& e) {
+        ok = 0;
+        err = e.what();
+      }
+    }
+    MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
+    if (!ok) throw InputError(err.empty() ? "cannot write the study's files (see rank 0)" : err);
+    if (rank_ == 0 && spec_.plots && opt_.plots) plot();
+    MPI_Barrier(comm_);
+  }
+
+  static std::string field(double x) { return std::isnan(x) ? "" : num(x); }
+
+  void write_csv() {
+    const std::string path = csv_path("_study.csv");
+    std::ofstream f(path);
+    if (!f) throw InputError(path + ": cannot write");
+    f << "# alphaflex study " << spec_.name << ": mode " << mode_name(spec_.mode) << ", scene " << spec_.scene
+      << ", study " << spec_.file << "\n";
+    f << "# reference: " << res_.reference_label << "\n";
+    f << "# errors: " << (spec_.relative_errors ? "relative" : "absolute")
+      << " at t_end (err_q, err_v, err_lambda: infinity norms of the state against the reference run)\n";
+    f << "# cpu: process CPU time (s) of each run, summed over " << size_ << " MPI rank(s); wall: elapsed (s)\n";
+    std::vector<std::string> extras;
+    for (const auto& r : res_.rows)
+      for (const auto& [k, v] : r.extra)
+        if (std::find(extras.begin(), extras.end(), k) == extras.end()) extras.push_back(k);
+    f << "mode,method,label,scheme,rho_inf,alpha_m,alpha_f,beta,gamma,scaling,h,tol,t_end,status,steps,newton_total,"
+         "newton_mean,newton_max,cpu,cpu_per_step,wall";
+    for (const auto& e : res_.error_names) f << ",err_" << e;
+    for (const auto& e : extras) f << "," << e;
+    f << ",failure\n";
+    for (const auto& r : res_.rows) {
+      const bool ours = r.method == "alphaflex";
+      f << mode_name(spec_.mode) << "," << r.method << "," << r.label << ",";
+      if (ours)
+        f << r.params.scheme << "," << sig6(r.params.rho_infinity()) << "," << num(r.params.alpha_m) << ","
+          << num(r.params.alpha_f) << "," << num(r.params.beta) << "," << num(r.params.gamma) << ","
+          << (r.scaling ? "on" : "off");
+      else
+        f << ",,,,,,";
+      f << "," << field(r.h) << "," << field(r.tol) << "," << field(r.t_end) << "," << (r.ok ? "ok" : "failed") << ","
+        << r.steps << "," << (ours ? std::to_string(r.newton_total) : "") << ","
+        << (ours && r.steps > 0 ? num(static_cast<double>(r.newton_total) / r.steps) : "") << ","
+        << (ours ? std::to_string(r.newton_max) : "") << "," << num(r.cpu) << ","
+        << (r.steps > 0 ? num(r.cpu / r.steps) : "") << "," << (ours ? num(r.wall) : "");
+      for (const auto& e : res_.error_names) f << "," << (r.errors.count(e) ? field(r.errors.at(e)) : "");
+      for (const auto& e : extras) f << "," << field(r.get(e));
+      std::string fail = r.failure;
+      for (char& c : fail)
+        if (c == ',' || c == '\n' || c == '"') c = ';';
+      f << "," << fail << "\n";
+    }
+    res_.files.push_back(path);
+  }
+
+  void write_history() {
+    const std::string path = csv_path("_history.csv");
+    std::ofstream f(path);
+    f << "label,h,step,t";
+    for (const auto& n : history_names_) f << "," << n;
+    f << "\n";
+    for (const auto& hi : histories_)
+      for (size_t n = 0; n < hi.t.size(); ++n) {
+        f << hi.label << "," << num(hi.h) << "," << n << "," << num(hi.t[n]);
+        for (double v : hi.values[n]) f << "," << field(v);
+        f << "\n";
+      }
+    res_.files.push_back(path);
+  }
+
+  void write_energy() {
+    const std::string path = csv_path("_energy.csv");
+    std::ofstream f(path);
+    f << "variant,part,kind,elements,mean_energy,peak_energy,share_mean,share_at_peak\n";
+    for (const auto& e : res_.energy)
+      f << e.variant << "," << e.part << "," << e.kind << "," << e.elements << "," << num(e.mean) << "," << num(e.peak)
+        << "," << field(e.share_mean) << "," << field(e.share_peak) << "\n";
+    res_.files.push_back(path);
+  }
+
+  void plot() {
+    const std::string script =
+        spec_.plot_script.empty() ? std::string(ALPHAFLEX_SOURCE_DIR) + "/scripts/study_plots.py" : spec_.plot_script;
+    std::error_code ec;
+    if (!fs::is_regular_file(script, ec)) {
+      warn("no charts: the plotting script " + script + " is not there (the CSV is written)");
+      return;
+    }
+    if (!python_ok()) {
+      warn("no charts: " + spec_.python + " not found (study.python)");
+      return;
+    }
+    const std::string cmd = shell_quote(python()) + " " + shell_quote(script) + " " + shell_quote(csv_path("_study.csv")) +
+                            (opt_.verbose ? "" : " > /dev/null");
+    std::cout.flush();
+    const int rc = std::system(cmd.c_str());
+    if (rc != 0) warn("the plotting script failed (" + cmd + " returned " + std::to_string(rc) + "); the CSV is written");
+    else if (opt_.verbose) std::cout << "charts: " << opt_.outdir << "/" << spec_.name << "_*.png" << std::endl;
+  }
+
+  const StudySpec& spec_;
+  const StudyOptions& opt_;
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  StudyResult res_;
+  Reference ref_;
+  std::vector<std::string> sensors_;
+};
+
+}  // namespace
+
+StudyResult run_study(const StudySpec& spec, const StudyOptions& options, MPI_Comm comm) {
+  return Study(spec, options, comm).run();
+}
+
+}  // namespace alphaflex::study
