@@ -32,6 +32,7 @@ bool gather_codes(MPI_Comm comm, int code, double timeout, std::vector<int>& cod
 int exit_code_of(const std::exception& e) {
   if (dynamic_cast<const InputError*>(&e)) return 1;
   if (dynamic_cast<const SolverError*>(&e)) return 3;
+  if (dynamic_cast<const Interrupted*>(&e)) return 5;
   return 4;
 }
 
@@ -68,7 +69,7 @@ int end_run(MPI_Comm comm, int code, const std::string& message, double timeout)
     if (codes[static_cast<size_t>(r)] != 0 && first < 0) first = r;
     worst = std::max(worst, codes[static_cast<size_t>(r)]);
   }
-  if (first == rank && code != 0) std::cerr << "alphaflex: error: " << message << std::endl;
+  if (first == rank && code != 0) std::cerr << (code == 5 ? "alphaflex: " : "alphaflex: error: ") << message << std::endl;
   return worst;
 }
 

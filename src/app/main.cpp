@@ -1,10 +1,11 @@
 // alphaflex — flexible multibody dynamics with the generalized-α scheme of Arnold & Brüls (2007).
 //
-//   alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [PETSc options]
+//   alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5] [PETSc options]
 //   alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]
 //                   [--study-set key=value ...] [--no-plots] [PETSc options]
 //
-// Exit codes: 0 success, 1 bad input, 2 bad command line, 3 solver failure, 4 internal error.
+// Exit codes: 0 success, 1 bad input, 2 bad command line, 3 solver failure, 4 internal error,
+// 5 stopped by a signal after writing a checkpoint.
 #include <petscsys.h>
 
 #include <cmath>
@@ -17,19 +18,22 @@
 
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/simulation.hpp"
+#include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/study/study.hpp"
 
 namespace {
 
 const char* kUsage =
-    "usage: alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [PETSc options]\n"
+    "usage: alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5] [PETSc options]\n"
     "       alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]\n"
     "                       [--study-set key=value ...] [--no-plots] [PETSc options]\n"
     "\n"
     "  -o OUTDIR          where NAME.h5, NAME.xdmf (ParaView) and NAME.csv (sensors) go (default: .)\n"
     "  --set key=value    override a scene key, e.g. --set solver.h=1e-3 --set solver.rho_inf=0.9\n"
     "                     --set solver.scheme=hht --set solver.scaling=off --set solver.t_end=0.5\n"
+    "  --restart FILE     go on from a checkpoint (OUTDIR/NAME.checkpoint.h5) as if the run had not stopped;\n"
+    "                     with the same -o, the results continue where the checkpoint left them\n"
     "  PETSc options      passed through, e.g. -log_view, -mat_mumps_icntl_4 2, -ksp_view\n"
     "  study: runs the scene over step sizes and scheme settings (its study: block, or --study FILE),\n"
     "  writes OUTDIR/NAME_study.csv and charts (scripts/study_plots.py); docs/study.md\n"
@@ -37,7 +41,8 @@ const char* kUsage =
     "  --study-set k=v    override a study key, e.g. --study-set h=[1e-3,5e-4]\n"
     "  --no-plots         write the CSV only\n"
     "\n"
-    "Scene keys: docs/input.md. Exit codes: 0 ok, 1 bad input, 2 bad command line, 3 solver failure.\n";
+    "Scene keys: docs/input.md; running long jobs: docs/running.md. Exit codes: 0 ok, 1 bad input,\n"
+    "2 bad command line, 3 solver failure, 4 a bug of alphaflex, 5 stopped by a signal (checkpoint written).\n";
 
 /// Resident memory of this process now (MB), from /proc/self/statm; 0 where it cannot be read.
 double resident_mb() {
@@ -50,7 +55,7 @@ double resident_mb() {
 }
 
 struct CommandLine {
-  std::string command, scene, outdir = ".", study_file;
+  std::string command, scene, outdir = ".", study_file, restart;
   std::vector<std::string> overrides, study_overrides;
   bool plots = true, study_options = false;
   std::vector<char*> petsc_argv;
@@ -72,6 +77,9 @@ CommandLine parse(int argc, char** argv) {
       else cl.overrides.push_back(argv[++i]);
     } else if (a.rfind("--set=", 0) == 0) {
       cl.overrides.push_back(a.substr(6));
+    } else if (a == "--restart") {
+      if (i + 1 >= argc || argv[i + 1][0] == '\0') cl.error = "--restart needs a checkpoint file";
+      else cl.restart = argv[++i];
     } else if (a == "--study") {
       cl.study_options = true;
       if (i + 1 >= argc || argv[i + 1][0] == '\0') cl.error = "--study needs a study file";
@@ -133,6 +141,7 @@ void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, 
   opt.outdir = cl.outdir;
   opt.exit_comm = exit_comm;
   opt.exit_timeout = exit_timeout;
+  opt.restart = cl.restart;
   double description_mb = resident_mb() - before_mb, largest_mb = 0.0;
   MPI_Allreduce(&description_mb, &largest_mb, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
   alphaflex::RunSummary sum = alphaflex::run_simulation(scene, opt, PETSC_COMM_WORLD);
@@ -177,6 +186,7 @@ int main(int argc, char** argv) {
   if (cl.error.empty() && cl.command != "run" && cl.command != "study")
     cl.error = cl.command.empty() ? "no command given" : "unknown command '" + cl.command + "'";
   if (cl.error.empty() && cl.scene.empty()) cl.error = cl.command + " needs a scene file";
+  if (cl.error.empty() && cl.command == "study" && !cl.restart.empty()) cl.error = "--restart is an option of `alphaflex run`";
   if (cl.error.empty() && cl.command == "run" && cl.study_options)
     cl.error = "--study, --study-set and --no-plots are options of `alphaflex study`";
   if (!cl.error.empty()) {
@@ -196,6 +206,7 @@ int main(int argc, char** argv) {
   MPI_Comm_dup(PETSC_COMM_WORLD, &exit_comm);
   PetscReal exit_timeout = 5.0;
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-af_exit_timeout", &exit_timeout, nullptr));
+  alphaflex::install_stop_signals();
 
   int code = 0;
   std::string message;
@@ -210,6 +221,9 @@ int main(int argc, char** argv) {
     message = e.what();
   } catch (const alphaflex::SolverError& e) {
     code = 3;
+    message = e.what();
+  } catch (const alphaflex::Interrupted& e) {
+    code = 5;
     message = e.what();
   } catch (const std::exception& e) {
     code = 4;

@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <iomanip>
 #include <iostream>
@@ -11,11 +12,13 @@
 
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/progress.hpp"
+#include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/fault_injection.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
+#include "alphaflex/io/checkpoint.hpp"
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
@@ -97,10 +100,31 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   }
   for (const auto& sn : model.sensors()) sum.sensor_names.push_back(sn.name);
 
-  // Output files first (collective: the ranks agree on success inside, so a failure on one rank
-  // does not leave the others waiting).
+  // A restart reads its checkpoint first: the results go on from the position it records.
+  const bool restarting = !opt.restart.empty();
+  Checkpoint ck;
+  if (restarting) {
+    if (rs.analysis == Analysis::Static || rs.initial_static)
+      throw InputError(opt.restart + ": --restart continues a dynamic run; a static analysis (or solver.initial_static) has no checkpoints");
+    ck = read_checkpoint(sub, opt.restart, rs.parameters, rs.h);
+    if (!(ck.state.t < rs.t_end - 1e-12 * std::max(1.0, std::fabs(rs.t_end)))) {
+      std::ostringstream os;
+      os << opt.restart << ": the checkpoint is at t = " << ck.state.t << " s, solver.t_end = " << rs.t_end
+         << " s: nothing to do (give a larger solver.t_end, e.g. --set solver.t_end=" << 2.0 * ck.state.t << ", to go on)";
+      throw InputError(os.str());
+    }
+    sum.restarted_from = opt.restart;
+    sum.restart_time = ck.state.t;
+    for (const auto& w : ck.warnings) sum.warnings.push_back(w);
+  }
+  // Output files (collective: the ranks agree on success inside, so a failure on one rank does not
+  // leave the others waiting).
   std::unique_ptr<ResultsWriter>& writer = o.writer;
-  if (opt.write_results) writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name, rs.hdf5);
+  if (opt.write_results)
+    writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name, rs.hdf5, rs.commit_interval,
+                                             restarting ? &ck.position.results : nullptr);
+  if (writer)
+    for (const auto& w : writer->warnings()) sum.warnings.push_back(w);
 
   integrator.times().setup += MPI_Wtime() - wall0;  // partition, subdomain, preallocation, files
   std::vector<double> values;
@@ -150,7 +174,9 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     return sum;
   };
   MechanicalState s = sub.model().initial_state();
-  if (rs.analysis == Analysis::Static || rs.initial_static) {
+  if (restarting) {
+    s = ck.state;
+  } else if (rs.analysis == Analysis::Static || rs.initial_static) {
     // Quasi-static load stepping (integrators/quasi_static.hpp): the whole analysis, or the
     // pre-loaded equilibrium a dynamic run starts from.
     const bool is_static = rs.analysis == Analysis::Static;
@@ -190,16 +216,26 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
       return finish(s);
     }
   }
-  if (!rs.integrator.consistent_start) {
-    const double viol = constraint_violation(sub, s);
-    if (viol > 1e-9 * std::max(1.0, sub.max_abs(s.q)))
-      sum.warnings.push_back("solver.consistent_start is off and the initial positions violate the joints by up to " +
-                             std::to_string(viol) + ": the first steps' multipliers will be far off");
-  }
-  try {
-    sum.projection = integrator.initialize(s);
-  } catch (const InputError& e) {
-    throw InputError(scene.file + ": " + e.what());  // the model as given cannot start
+  if (restarting) {
+    // The state, a and the counters as they were: the steps below are those the uninterrupted
+    // run would have taken (the consistent start belongs to t = 0 only).
+    integrator.set_auxiliary(ck.auxiliary);
+    sum.steps = static_cast<int>(ck.position.step);
+    sum.newton_total = ck.position.newton_total;
+    sum.newton_max = static_cast<int>(ck.position.newton_max);
+    sum.step_cuts = static_cast<int>(ck.position.step_cuts);
+  } else {
+    if (!rs.integrator.consistent_start) {
+      const double viol = constraint_violation(sub, s);
+      if (viol > 1e-9 * std::max(1.0, sub.max_abs(s.q)))
+        sum.warnings.push_back("solver.consistent_start is off and the initial positions violate the joints by up to " +
+                               std::to_string(viol) + ": the first steps' multipliers will be far off");
+    }
+    try {
+      sum.projection = integrator.initialize(s);
+    } catch (const InputError& e) {
+      throw InputError(scene.file + ": " + e.what());  // the model as given cannot start
+    }
   }
 
   const double h = rs.h;
@@ -231,25 +267,98 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   if (opt.verbose && rank == 0)
     for (const auto& w : sum.warnings) std::cout << "  warning: " << w << std::endl;
 
-  record(s, true);
-  long last_written = 0;
+  long first = 1, last_written = 0;
+  if (restarting) {
+    first = static_cast<long>(ck.position.step) + 1;
+    last_written = static_cast<long>(ck.position.last_written);
+  } else {
+    record(s, true);
+  }
   ProgressReporter progress(opt.verbose && rank == 0, rs.progress_interval, s.t, rs.t_end, nsteps);
 
-  // A failed step: keep what was computed (the last converged state goes to the files) and stop.
+  // Checkpoints (io/checkpoint.hpp): every checkpoint_every steps or s of wall time, at the end,
+  // after a failure and on a stop signal. The results are committed first, so the checkpoint's
+  // position of the results is complete on disk.
+  RunPosition pos;
+  pos.h = h;
+  double hc = h;  // the step size in use (step cuts)
+  int cuts_in_row = 0, good = 0;
+  if (restarting) {
+    // With step cuts the checkpoint's step size in use goes on, unless the scene changed h.
+    if (std::fabs(ck.position.h - h) <= 1e-14 * h || ck.position.h < h) hc = ck.position.h;
+    cuts_in_row = static_cast<int>(ck.position.cuts_in_row);
+    good = static_cast<int>(ck.position.good_steps);
+    sum.h_min = ck.position.h_min;
+  }
+  const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
+  double last_checkpoint = MPI_Wtime();
+  auto checkpoint = [&](long n) {
+    if (!writer) return;
+    const double t0 = MPI_Wtime();
+    writer->commit();
+    pos.step = n;
+    pos.h = hc;
+    pos.cuts_in_row = cuts_in_row;
+    pos.good_steps = good;
+    pos.newton_total = sum.newton_total;
+    pos.newton_max = sum.newton_max;
+    pos.step_cuts = sum.step_cuts;
+    pos.h_min = sum.h_min;
+    pos.last_written = last_written;
+    pos.results = writer->position();
+    sum.checkpoint_bytes = write_checkpoint(sub, checkpoint_path, s, integrator.auxiliary(), pos, rs.parameters, h,
+                                            rs.checkpoint_keep);
+    sum.checkpoint = checkpoint_path;
+    ++sum.checkpoints;
+    sum.checkpoint_time += MPI_Wtime() - t0;
+    last_checkpoint = MPI_Wtime();
+  };
+  // After every step, the ranks agree whether to checkpoint (rank 0's wall clock, the step count)
+  // and whether to stop (a signal on any rank): one small all-reduce.
+  auto due = [&](long n) {
+    int flags[2] = {stop_signal(), 0};
+    if (rs.checkpoint_steps > 0 && n % rs.checkpoint_steps == 0) flags[1] = 1;
+    if (rank == 0 && rs.checkpoint_wall > 0.0 && MPI_Wtime() - last_checkpoint >= rs.checkpoint_wall) flags[1] = 1;
+    if (sub.size() > 1) MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, comm);
+    if (flags[1] || flags[0]) checkpoint(n);
+    if (!flags[0]) return;
+    // Stop on request: the checkpoint is written; the state reached goes to the results too.
+    if (writer) {
+      if (last_written != n) writer->write_fields(s);
+      writer->finish();
+    }
+    progress.finish();
+    std::ostringstream os;
+    os << "stopped by " << signal_name(flags[0]) << " at t = " << s.t << " s (step " << n << " of " << nsteps << ")";
+    if (writer)
+      os << ": checkpoint " << checkpoint_path << ", results in " << writer->xdmf_path() << ".\n  Go on with: alphaflex run "
+         << scene.file << " --restart " << checkpoint_path << " -o " << std::filesystem::absolute(opt.outdir).string()
+         << " (and the same --set options)";
+    else
+      os << " (no output, no checkpoint)";
+    throw Interrupted(os.str());
+  };
+
+  // A failed step: keep what was computed (a checkpoint of the last converged state, which goes to
+  // the files too) and stop.
   auto stop = [&](long n, const SolverError& e) {
     if (writer) {
+      checkpoint(n - 1);
       if (last_written != n - 1) writer->write_fields(s);
       writer->finish();
     }
     std::ostringstream os;
     os << "step " << n << " of " << nsteps << ": " << e.what() << "\n  The last converged state (t = " << s.t
-       << " s) is written" << (writer ? " to " + writer->xdmf_path() : std::string(" nowhere (no output)")) << ".";
+       << " s) is written" << (writer ? " to " + writer->xdmf_path() + "; a checkpoint of it to " + checkpoint_path
+                                            : std::string(" nowhere (no output)"))
+       << ".";
     throw SolverError(os.str());
   };
-  sum.h_min = h;
+  if (!restarting) sum.h_min = h;
+  long n = first - 1;
   if (rs.step_cuts == 0) {
     // Fixed steps (the paper's scheme exactly): stop at the first Newton failure.
-    for (long n = 1; n <= nsteps; ++n) {
+    for (n = first; n <= nsteps; ++n) {
       const double hn = (n == nsteps) ? rs.t_end - s.t : h;
       StepReport rep;
       try {
@@ -265,7 +374,9 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
       record(s, fields);
       if (fields) last_written = n;
       progress.update(n, s.t, sum.newton_total);
+      if (n < nsteps) due(n);
     }
+    n = nsteps;
   } else {
     // Newton failure policy (solver.step_cuts): a step that does not converge is retried from the
     // same state (q, v, q̈, λ and the auxiliary a) with h halved, up to step_cuts times in a row;
@@ -274,9 +385,6 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     // (Arnold & Brüls 2007, eq. 17) — a run with cuts carries that extra error (measured in
     // tests/unit/test_step_cuts.cpp); rescaling a − q̈ with the step ratio was tried and was worse.
     // The summary counts the cuts.
-    double hc = h;
-    int cuts_in_row = 0, good = 0;
-    long n = 0;
     const double t_tol = 1e-12 * std::max(1.0, std::fabs(rs.t_end));
     while (rs.t_end - s.t > t_tol) {
       const double hn = std::min(hc, rs.t_end - s.t);
@@ -310,9 +418,11 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
       record(s, fields);
       if (fields) last_written = n;
       progress.update(n, s.t, sum.newton_total);
+      if (!last) due(n);
     }
   }
   progress.finish();
+  checkpoint(n);  // the end of a run always leaves one (a longer solver.t_end can go on from it)
   return finish(s);
 }
 
@@ -323,7 +433,8 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   os.precision(4);
   const double mean = s.steps ? static_cast<double>(s.newton_total) / s.steps : 0.0;
   const PhaseTimes& t = s.times;
-  const double other = std::max(0.0, s.wall - t.setup - t.assembly - t.factorization - t.solve - t.output);
+  const double other =
+      std::max(0.0, s.wall - t.setup - t.assembly - t.factorization - t.solve - t.output - s.checkpoint_time);
   auto pct = [&](double x) { return s.wall > 0 ? 100.0 * x / s.wall : 0.0; };
   os << "summary of " << scene.name << "\n"
      << "  unknowns            " << s.unknowns << " (" << s.coordinates << " coordinates, " << s.multipliers
@@ -366,14 +477,19 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   os << "  memory              peak " << std::setprecision(4) << s.peak_memory_mb << " MB resident in all ranks ("
      << s.peak_memory_max_mb << " MB largest rank)";
   if (s.scene_memory_mb >= 0.0) os << ", " << s.scene_memory_mb << " MB of it per rank for the scene's whole model";
-  os << "\n"
-     << std::fixed << std::setprecision(3)
+  os << "\n";
+  if (!s.restarted_from.empty()) os << "  restarted from      " << s.restarted_from << " (t = " << s.restart_time << " s)\n";
+  if (s.checkpoints > 0)
+    os << "  checkpoints         " << s.checkpoints << " written (" << std::setprecision(3) << s.checkpoint_bytes / 1e6
+       << " MB each), the last: " << s.checkpoint << "\n" << std::setprecision(4);
+  os << std::fixed << std::setprecision(3)
      << "  wall time           " << s.wall << " s (" << (s.steps ? 1e6 * s.wall / s.steps : 0.0) << " us per step)\n"
      << "    setup             " << t.setup << " s (" << std::setprecision(1) << pct(t.setup) << " %)\n" << std::setprecision(3)
      << "    assembly          " << t.assembly << " s (" << std::setprecision(1) << pct(t.assembly) << " %)\n" << std::setprecision(3)
      << "    factorization     " << t.factorization << " s (" << std::setprecision(1) << pct(t.factorization) << " %)\n" << std::setprecision(3)
      << "    solve             " << t.solve << " s (" << std::setprecision(1) << pct(t.solve) << " %)\n" << std::setprecision(3)
      << "    output            " << t.output << " s (" << std::setprecision(1) << pct(t.output) << " %)\n" << std::setprecision(3)
+     << "    checkpoints       " << s.checkpoint_time << " s (" << std::setprecision(1) << pct(s.checkpoint_time) << " %)\n" << std::setprecision(3)
      << "    other             " << other << " s (" << std::setprecision(1) << pct(other) << " %)\n";
   if (!s.csv.empty()) os << "results\n  sensors  " << s.csv << "\n";
   if (!s.xdmf.empty()) os << "  fields   " << s.h5 << "\n  ParaView paraview " << s.xdmf << "\n";

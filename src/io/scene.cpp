@@ -426,7 +426,31 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   if (root["description"]) scene.description = rd.text(root["description"], "description");
   read_solver(rd, root["solver"], scene.settings, scene.warnings);
   if (const YAML::Node o = root["output"]) {
-    rd.keys(o, "output", {"every", "hdf5", "progress"});
+    rd.keys(o, "output", {"every", "hdf5", "progress", "commit_interval", "checkpoint_every", "checkpoint_keep"});
+    if (o["commit_interval"]) {
+      scene.settings.commit_interval = rd.number(o["commit_interval"], "output.commit_interval");
+      if (!(scene.settings.commit_interval >= 0.0))
+        rd.fail(o["commit_interval"], "output.commit_interval",
+                "expected a wall-time interval >= 0 (s; 0: every output step is committed at once)");
+    }
+    if (const YAML::Node c = o["checkpoint_every"]) {
+      // A whole number of steps, or a wall time with its unit: "600 s", "10 min", "2 h".
+      const char* expected = "expected a number of steps (an integer >= 1) or a wall time with its unit, e.g. \"600 s\", \"10 min\", \"2 h\"";
+      std::istringstream in(c.IsScalar() ? c.Scalar() : std::string());
+      double value = 0.0;
+      std::string unit, rest;
+      in >> value >> unit;
+      if (!unit.empty()) {
+        in >> rest;
+        if (!(value > 0.0) || !rest.empty() || (unit != "s" && unit != "min" && unit != "h"))
+          rd.fail(c, "output.checkpoint_every", expected);
+        scene.settings.checkpoint_wall = value * (unit == "s" ? 1.0 : unit == "min" ? 60.0 : 3600.0);
+      } else {
+        if (!c.IsScalar()) rd.fail(c, "output.checkpoint_every", expected);
+        scene.settings.checkpoint_steps = rd.integer(c, "output.checkpoint_every", 1, 1000000000);
+      }
+    }
+    if (o["checkpoint_keep"]) scene.settings.checkpoint_keep = rd.integer(o["checkpoint_keep"], "output.checkpoint_keep", 1, 1000);
     if (o["progress"]) {
       scene.settings.progress_interval = rd.number(o["progress"], "output.progress");
       if (!(scene.settings.progress_interval >= 0.0))

@@ -302,7 +302,9 @@ TEST(ParallelHdf5, EveryRankWritesItsRowsWhereTheOneRankFileHasThem) {
         for (const MechanicalState* s : {&s0, &s1}) w.write_fields(*s);
         w.finish();
       }
-      const auto par = read_all(base + "/parallel/" + sc.name + ".h5"), ser = read_all(base + "/serial/" + sc.name + ".h5");
+      // The data are in the part files (NAME.h5 links to them); each writer made one part here.
+      const std::string part = "/" + sc.name + ".h5.parts/part_000000.h5";
+      const auto par = read_all(base + "/parallel" + part), ser = read_all(base + "/serial" + part);
       ASSERT_FALSE(ser.empty());
       EXPECT_EQ(par.size(), ser.size());
       for (const auto& [name, d] : ser) {

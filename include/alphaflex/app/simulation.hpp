@@ -21,6 +21,8 @@ struct RunOptions {
   /// some ranks caught ends the job (MPI_Abort) after `exit_timeout` s. MPI_COMM_NULL: no check.
   MPI_Comm exit_comm = MPI_COMM_NULL;
   double exit_timeout = 5.0;
+  /// A checkpoint to go on from (io/checkpoint.hpp); empty: start at t = 0.
+  std::string restart;
   /// Called on every rank with the state (model order, as RunSummary::final_state) at t = 0 and
   /// after every converged step, load steps included; the study module uses it for histories
   /// of multipliers and strain energies. Empty: not called.
@@ -55,6 +57,12 @@ struct RunSummary {
   /// Resident memory that reading the scene (and its mesh) and building its whole model took on
   /// the largest rank: the part every rank holds whatever their number (set by the command).
   double scene_memory_mb = -1.0;
+  // Checkpoints written (io/checkpoint.hpp): how many, the size of the last, the time they took.
+  int checkpoints = 0;
+  long long checkpoint_bytes = 0;
+  double checkpoint_time = 0.0;
+  std::string checkpoint, restarted_from;  ///< the last checkpoint's path; the checkpoint the run restarted from
+  double restart_time = 0.0;
   std::string h5, xdmf, csv;
 };
 

@@ -18,4 +18,11 @@ class SolverError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Not an error: the run stopped on request (a stop signal) after writing a checkpoint and its
+/// results; the message says how to restart. Exit code 5.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace alphaflex

@@ -34,6 +34,14 @@ struct RunSettings {
   int output_every = 1; ///< HDF5 output every N steps (sensors: every step)
   double progress_interval = 30.0;  ///< s of wall time between progress lines in batch logs (0: none)
   bool hdf5 = true;
+  /// s of wall time a results part stays open before it is committed (io/results_writer.hpp);
+  /// 0: every output step.
+  double commit_interval = 1.0;
+  /// Checkpoints (io/checkpoint.hpp): every this many steps, or every this many s of wall time
+  /// (0: only at the end of the run); keep this many of them.
+  long checkpoint_steps = 0;
+  double checkpoint_wall = 0.0;
+  int checkpoint_keep = 1;
 };
 
 struct Scene {

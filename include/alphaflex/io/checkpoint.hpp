@@ -1,0 +1,55 @@
+#pragma once
+// Checkpoints: the whole state of a run in one HDF5 file, OUTDIR/NAME.checkpoint.h5, from which
+// `alphaflex run SCENE --restart FILE` goes on as if the run had not stopped.
+//
+// What is in it: the state q (positions and unit quaternions), q̇, q̈, λ and the integrator's
+// auxiliary variable a of eq. (3), in model order; time, step, the step size in use and the state of
+// the step-cut policy, the summary's counters, the position of the results (sensor rows, output
+// steps, parts); the scheme (α_m, α_f, β, γ, h); and a fingerprint of the model (kinds and names of
+// the nodes, sizes, types and names of the joints, types and names of the elements), so that a
+// checkpoint of another model is refused with what differs. The state is written in model order
+// with each rank's rows (parallel HDF5), so a checkpoint restarts on any number of ranks.
+//
+// Atomic: the file is written under a temporary name and renamed over the last one (with `keep` > 1
+// the older ones are kept as NAME.checkpoint.1.h5, .2.h5, …), so a kill at any moment leaves the
+// previous checkpoint whole.
+#include <string>
+#include <vector>
+
+#include "alphaflex/integrators/alpha_parameters.hpp"
+#include "alphaflex/io/results_writer.hpp"
+#include "alphaflex/partition/subdomain.hpp"
+
+namespace alphaflex {
+
+/// Where a run stands besides its state: what a restart needs to go on as if uninterrupted.
+struct RunPosition {
+  long long step = 0;            ///< time steps taken
+  double h = 0.0;                ///< step size in use (with step cuts: the current one)
+  long long cuts_in_row = 0, good_steps = 0;  ///< state of the step-cut policy
+  long long newton_total = 0, newton_max = 0, step_cuts = 0;
+  double h_min = 0.0;
+  long long last_written = 0;    ///< the step of the last output step
+  ResultsPosition results;       ///< committed sensor rows, output steps and parts
+};
+
+struct Checkpoint {
+  MechanicalState state;      ///< this rank's subdomain's state
+  Eigen::VectorXd auxiliary;  ///< the auxiliary variable a, local
+  RunPosition position;
+  /// Settings that differ from the checkpointed run's (the restart goes on, but its results will
+  /// not be those of the uninterrupted run).
+  std::vector<std::string> warnings;
+};
+
+/// Writes the checkpoint of this rank's part to `path` (collective): atomically, keeping `keep`
+/// checkpoints. Returns its size in bytes.
+long long write_checkpoint(const Subdomain& sub, const std::string& path, const MechanicalState& local,
+                           const Eigen::VectorXd& auxiliary, const RunPosition& position,
+                           const AlphaParameters& parameters, double h, int keep);
+
+/// Reads the checkpoint `path` for this subdomain (collective). Throws InputError on every rank if
+/// it cannot be read, is no checkpoint, or is of another model (saying what differs).
+Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const AlphaParameters& parameters, double h);
+
+}  // namespace alphaflex
