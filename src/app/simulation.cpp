@@ -467,6 +467,9 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   os
      << "  Newton iterations   total " << s.newton_total << ", mean " << mean << " per step, max " << s.newton_max << "\n"
      << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n";
+  if (s.mumps.dense)
+    os << "  linear solver       dense LU with partial pivoting (one rank, " << s.unknowns << " unknowns <= -af_dense_lu "
+       << LinearSolver::kDenseLimit << " by default; MUMPS above)\n";
   if (s.mumps.mumps)
     os << "  MUMPS               " << s.mumps.entries << " entries in the factors, " << s.mumps.flops
        << " flop per factorization, " << s.mumps.memory_sum_mb << " MB in all (" << s.mumps.memory_max_mb

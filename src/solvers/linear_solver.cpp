@@ -1,8 +1,10 @@
 #include "alphaflex/solvers/linear_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
 
 namespace alphaflex {
 namespace {
@@ -19,7 +21,7 @@ bool workspace_too_small(PetscInt info1) {
 }  // namespace
 
 
-LinearSolver::LinearSolver(MPI_Comm comm) {
+LinearSolver::LinearSolver(MPI_Comm comm) : comm_(comm) {
   PetscFunctionBeginUser;
   PetscCallAbort(comm, KSPCreate(comm, &ksp_));
   PetscCallAbort(comm, KSPSetType(ksp_, KSPPREONLY));
@@ -63,10 +65,70 @@ PetscErrorCode LinearSolver::describe_failure(const char* phase) {
 }
 
 
+PetscErrorCode LinearSolver::choose_backend(Mat A) {
+  PetscFunctionBeginUser;
+  // Dense on one rank for small systems, unless the user chose a solver in the options database.
+  int size = 1;
+  MPI_Comm_size(comm_, &size);
+  PetscInt n = 0, limit = kDenseLimit;
+  PetscCall(MatGetSize(A, &n, nullptr));
+  PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-af_dense_lu", &limit, nullptr));
+  // Any KSP, PC or MUMPS option (-ksp_type, -ksp_view, -pc_factor_mat_solver_type,
+  // -mat_mumps_icntl_14, ...) means the user wants the PETSc path.
+  char* all = nullptr;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  const std::string options = all ? all : "";
+  PetscCall(PetscFree(all));
+  bool chosen = false;
+  for (const char* key : {"-ksp_", "-pc_", "-mat_mumps_"}) chosen = chosen || options.find(key) != std::string::npos;
+  backend_ = (size == 1 && n <= limit && !chosen) ? Backend::Dense : Backend::Krylov;
+  if (backend_ == Backend::Dense) {
+    dense_.setZero(n, n);
+    lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+    rhs_.setZero(n);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearSolver::factor_dense(Mat A) {
+  PetscFunctionBeginUser;
+  // The values of the sequential AIJ matrix into the dense one (the pattern is fixed; zeros stay).
+  PetscInt n = 0, nz = 0;
+  const PetscInt* cols = nullptr;
+  const PetscScalar* vals = nullptr;
+  PetscCall(MatGetSize(A, &n, nullptr));
+  dense_.setZero();
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscCall(MatGetRow(A, i, &nz, &cols, &vals));
+    for (PetscInt k = 0; k < nz; ++k) dense_(i, cols[k]) = vals[k];
+    PetscCall(MatRestoreRow(A, i, &nz, &cols, &vals));
+  }
+  lu_.compute(dense_);
+  ++numeric_;
+  // A zero (or non-finite) pivot after partial pivoting: the matrix is singular, as MUMPS' -10.
+  const auto d = lu_.matrixLU().diagonal();
+  bool singular = false;
+  for (Eigen::Index i = 0; i < d.size(); ++i) singular = singular || !(std::fabs(d[i]) > 0.0) || !std::isfinite(d[i]);
+  if (singular) failure_ = "factorization failed: dense LU found a zero pivot (numerically singular matrix)";
+  stats_ = FactorStatistics{};
+  stats_.dense = true;
+  stats_.entries = static_cast<double>(n) * static_cast<double>(n);
+  stats_.flops = 2.0 / 3.0 * static_cast<double>(n) * static_cast<double>(n) * static_cast<double>(n);
+  stats_.memory_max_mb = stats_.memory_sum_mb = 2.0 * stats_.entries * 8.0 / 1048576.0;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode LinearSolver::factor(Mat A) {
   PetscFunctionBeginUser;
   failure_.clear();
   workspace_failure_ = false;
+  if (backend_ == Backend::Undecided) PetscCall(choose_backend(A));
+  if (backend_ == Backend::Dense) {
+    if (last_state_ == -1) ++symbolic_;  // the pattern, once (as for MUMPS)
+    last_state_ = 0;
+    PetscCall(factor_dense(A));
+    PetscFunctionReturn(0);
+  }
   PetscObjectState state;
   PetscCall(MatGetNonzeroState(A, &state));
   if (state != last_state_) ++symbolic_;
@@ -152,6 +214,19 @@ PetscErrorCode LinearSolver::read_statistics(PC pc) {
 PetscErrorCode LinearSolver::solve(Vec b, Vec x) {
   PetscFunctionBeginUser;
   if (!failure_.empty()) PetscFunctionReturn(0);
+  if (backend_ == Backend::Dense) {
+    const PetscScalar* bb = nullptr;
+    PetscScalar* xx = nullptr;
+    PetscCall(VecGetArrayRead(b, &bb));
+    rhs_ = Eigen::Map<const Eigen::VectorXd>(bb, rhs_.size());
+    PetscCall(VecRestoreArrayRead(b, &bb));
+    PetscCall(VecGetArray(x, &xx));
+    Eigen::Map<Eigen::VectorXd> xm(xx, rhs_.size());
+    xm = lu_.solve(rhs_);
+    if (!xm.allFinite()) failure_ = "solve failed: the dense LU solution is not finite";
+    PetscCall(VecRestoreArray(x, &xx));
+    PetscFunctionReturn(0);
+  }
   PetscCall(KSPSolve(ksp_, b, x));
   KSPConvergedReason reason;
   PetscCall(KSPGetConvergedReason(ksp_, &reason));

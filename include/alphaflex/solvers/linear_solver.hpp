@@ -4,8 +4,16 @@
 // so PETSc reuses MUMPS' symbolic analysis and only refactorizes numerically. Every default can be
 // overridden from the options database (-ksp_type, -pc_type, -pc_factor_mat_solver_type,
 // -mat_mumps_icntl_*, ...).
+//
+// Small systems on one rank take a dense path instead: LU with partial pivoting (Eigen) of the
+// matrix copied into preallocated dense storage. Below a few hundred unknowns MUMPS' fixed cost
+// per call (its driver, ~90 µs per factorization and per solve in MUMPS 5.5 whatever the size:
+// docs/performance.md) is far above the O(n³) work; the dense path has no allocation per call.
+// It is used on one rank up to -af_dense_lu N unknowns (default kDenseLimit, chosen by
+// measurement; 0: never), and never when the options choose a KSP, PC or solver type.
 #include <petscksp.h>
 
+#include <Eigen/Dense>
 #include <string>
 
 namespace alphaflex {
@@ -14,6 +22,7 @@ namespace alphaflex {
 /// MUMPS by another solver).
 struct FactorStatistics {
   bool mumps = false;
+  bool dense = false;         ///< the dense path (entries n², flops 2n³/3)
   double flops = 0.0;         ///< RINFOG(3): operations of the elimination
   double entries = 0.0;       ///< INFOG(29): entries in the factors, all ranks
   double memory_max_mb = 0.0; ///< INFOG(21): MB used during the factorization, largest rank
@@ -22,6 +31,10 @@ struct FactorStatistics {
 
 class LinearSolver {
  public:
+  /// Unknowns up to which one rank factors densely unless -af_dense_lu says otherwise (measured:
+  /// docs/performance.md, "small systems").
+  static constexpr int kDenseLimit = 150;
+
   explicit LinearSolver(MPI_Comm comm);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
@@ -44,6 +57,8 @@ class LinearSolver {
   /// estimate was too small; and the ICNTL(14) in use now (percent over MUMPS' estimate).
   int workspace_retries() const { return workspace_retries_; }
   int workspace_percent() const { return icntl14_; }
+  /// True once the dense path was chosen (at the first factorization).
+  bool dense() const { return backend_ == Backend::Dense; }
   /// Number of symbolic analyses and numeric factorizations done so far (0 when the options
   /// replace the LU by an iterative method).
   int symbolic_count() const { return symbolic_; }
@@ -54,6 +69,14 @@ class LinearSolver {
  private:
   PetscErrorCode describe_failure(const char* phase);
   PetscErrorCode read_statistics(PC pc);
+  PetscErrorCode choose_backend(Mat A);
+  PetscErrorCode factor_dense(Mat A);
+
+  enum class Backend { Undecided, Dense, Krylov } backend_ = Backend::Undecided;
+  MPI_Comm comm_;
+  Eigen::MatrixXd dense_;                   ///< the matrix copied from A (preallocated)
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  ///< its factors (storage reused: no allocation)
+  Eigen::VectorXd rhs_;
 
   KSP ksp_ = nullptr;
   std::string failure_;
