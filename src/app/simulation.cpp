@@ -157,6 +157,10 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     sum.final_sensors = values;
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
+    if (rs.integrator.newton.modified) {
+      sum.reused_iterations = integrator.reused_iterations();
+      sum.contraction_refreshes = integrator.contraction_refreshes();
+    }
     sum.mumps = solver.statistics();
     sum.workspace_retries = solver.workspace_retries();
     sum.workspace_percent = solver.workspace_percent();
@@ -239,13 +243,18 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   }
 
   const double h = rs.h;
-  const double ratio = rs.t_end / h;
-  long nsteps = std::lround(ratio);
-  if (std::fabs(ratio - static_cast<double>(nsteps)) > 1e-9 * std::max(1.0, ratio)) {
-    nsteps = static_cast<long>(std::ceil(ratio));  // last step shortened to land on t_end
+  // Fixed steps: a restart goes on from the checkpoint's step and time with the scene's h, which may
+  // differ from the checkpoint's (a warning says so): the steps left are counted from there.
+  const long steps_before = restarting ? static_cast<long>(ck.position.step) : 0;
+  const double t_from = restarting ? s.t : 0.0;
+  const double ratio = (rs.t_end - t_from) / h;
+  long nsteps = steps_before + std::lround(ratio);
+  if (std::fabs(ratio - std::round(ratio)) > 1e-9 * std::max(1.0, ratio)) {
+    nsteps = steps_before + static_cast<long>(std::ceil(ratio));  // last step shortened to land on t_end
     std::ostringstream os;
-    os << "t_end = " << rs.t_end << " s is not a multiple of h = " << h << " s: the last step is shortened to "
-       << rs.t_end - static_cast<double>(nsteps - 1) * h << " s (the order-2 condition, eq. 17, holds for constant h)";
+    os << "t_end = " << rs.t_end << " s is not a multiple of h = " << h << " s" << (restarting ? " after the restart time" : "")
+       << ": the last step is shortened to " << rs.t_end - t_from - static_cast<double>(nsteps - steps_before - 1) * h
+       << " s (the order-2 condition, eq. 17, holds for constant h)";
     sum.warnings.push_back(os.str());
   }
   {
@@ -312,6 +321,9 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     ++sum.checkpoints;
     sum.checkpoint_time += MPI_Wtime() - t0;
     last_checkpoint = MPI_Wtime();
+    // Modified Newton: a restart has no factorization to keep; refactor here too, so that the
+    // run and its restart take the same iterations bit for bit.
+    integrator.invalidate_factorization();
   };
   // After every step, the ranks agree whether to checkpoint (rank 0's wall clock, the step count)
   // and whether to stop (a signal on any rank): one small all-reduce.
@@ -467,6 +479,9 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   os
      << "  Newton iterations   total " << s.newton_total << ", mean " << mean << " per step, max " << s.newton_max << "\n"
      << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n";
+  if (s.reused_iterations >= 0)
+    os << "  modified Newton     " << s.reused_iterations << " iterations on a kept factorization, " << s.contraction_refreshes
+       << " refactorizations for a contraction rate above solver.newton.max_contraction\n";
   if (s.mumps.dense)
     os << "  linear solver       dense LU with partial pivoting (one rank, " << s.unknowns << " unknowns <= -af_dense_lu "
        << LinearSolver::kDenseLimit << " by default; MUMPS above)\n";

@@ -1,21 +1,21 @@
 #include "alphaflex/assembly/saddle_point_system.hpp"
 
+#include <algorithm>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/rotation.hpp"
 #include "alphaflex/core/fault_injection.hpp"
 
 namespace alphaflex {
 namespace {
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-PetscErrorCode add_block(Mat S, const std::vector<int>& rows, const std::vector<int>& cols, const RowMajor& block) {
-  PetscFunctionBeginUser;
-  PetscCall(MatSetValues(S, static_cast<PetscInt>(rows.size()), rows.data(), static_cast<PetscInt>(cols.size()),
-                         cols.data(), block.data(), ADD_VALUES));
-  PetscFunctionReturn(0);
+/// out = global[idx] (storage reused when the size is unchanged: no allocation per element).
+void gather_to(const Eigen::VectorXd& global, const std::vector<int>& idx, Eigen::VectorXd& out) {
+  out.resize(static_cast<Eigen::Index>(idx.size()));
+  for (size_t i = 0; i < idx.size(); ++i) out[static_cast<Eigen::Index>(i)] = global[idx[i]];
 }
 
 /// A ← A·T(x) on the columns of each Lie-group node of `nodes` (x: the step increment).
@@ -24,7 +24,15 @@ void apply_tangent_operator(const Model& m, const std::vector<int>& nodes, const
   int off = 0;
   for (int n : nodes) {
     const Node& nd = m.node(n);
-    if (is_lie_group(nd.kind)) {
+    if (nd.kind == NodeKind::Frame3D) {
+      // T = diag(I, T_SO(3)(θ)): only the three rotation columns change (fixed-size, no allocation).
+      const double* xr = x.data() + nd.first_dof + 3;
+      const Eigen::Matrix3d T = tangent_so3<double>(Eigen::Vector3d(xr[0], xr[1], xr[2]));
+      for (Eigen::Index r = 0; r < A.rows(); ++r) {
+        const Eigen::RowVector3d a = A.block<1, 3>(r, off + 3);
+        A.block<1, 3>(r, off + 3).noalias() = a * T;
+      }
+    } else if (is_lie_group(nd.kind)) {
       const Eigen::MatrixXd T = tangent_operator(nd.kind, x.data() + nd.first_dof);
       A.middleCols(off, nd.ndof) = A.middleCols(off, nd.ndof) * T;
     }
@@ -110,6 +118,7 @@ PetscErrorCode SaddlePointSystem::preallocate() {
   PetscCall(MatDestroy(&pre));
   PetscCall(MatSetOption(S_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatCreateVecs(S_, &x_, &r_));
+  PetscCall(build_entry_maps());
 
   // Owned and ghost unknowns of this rank, in local order: one scatter brings a solution back.
   std::vector<PetscInt> from(sub_.dof_indices().begin(), sub_.dof_indices().end());
@@ -119,6 +128,106 @@ PetscErrorCode SaddlePointSystem::preallocate() {
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), &local_));
   PetscCall(VecScatterCreate(x_, is, local_, nullptr, &to_local_));
   PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::build_entry_maps() {
+  PetscFunctionBeginUser;
+  // MatPreallocatorPreallocate(fill = true) left S assembled with its final pattern (zeros).
+  PetscBool assembled = PETSC_FALSE;
+  PetscCall(MatAssembled(S_, &assembled));
+  if (!assembled) {
+    PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
+  }
+  PetscBool seq = PETSC_FALSE;
+  PetscCall(PetscObjectBaseTypeCompare(reinterpret_cast<PetscObject>(S_), MATSEQAIJ, &seq));
+  const PetscInt* garray = nullptr;
+  if (seq) {
+    diag_ = S_;
+    offdiag_ = nullptr;
+  } else {
+    PetscCall(MatMPIAIJGetSeqAIJ(S_, &diag_, &offdiag_, &garray));
+  }
+  PetscInt rstart = 0, rend = 0, cstart = 0, cend = 0, n_garray = 0;
+  PetscCall(MatGetOwnershipRange(S_, &rstart, &rend));
+  PetscCall(MatGetOwnershipRangeColumn(S_, &cstart, &cend));
+  const PetscInt *dia = nullptr, *dja = nullptr, *oia = nullptr, *oja = nullptr;
+  PetscInt nrows = 0;
+  PetscBool done = PETSC_FALSE;
+  PetscCall(MatGetRowIJ(diag_, 0, PETSC_FALSE, PETSC_FALSE, &nrows, &dia, &dja, &done));
+  PetscCheck(done, comm_, PETSC_ERR_PLIB, "no CSR structure of the diagonal part");
+  if (offdiag_) {
+    PetscCall(MatGetRowIJ(offdiag_, 0, PETSC_FALSE, PETSC_FALSE, &nrows, &oia, &oja, &done));
+    PetscCheck(done, comm_, PETSC_ERR_PLIB, "no CSR structure of the off-diagonal part");
+    PetscCall(MatGetSize(offdiag_, nullptr, &n_garray));
+  }
+  // Columns are sorted within each CSR row, and the off-diagonal part numbers its columns in the
+  // increasing order of their global indices (garray): two binary searches per entry, once.
+  auto find = [](const PetscInt* begin, const PetscInt* end, PetscInt col) -> const PetscInt* {
+    const PetscInt* f = std::lower_bound(begin, end, col);
+    return (f != end && *f == col) ? f : nullptr;
+  };
+  auto position = [&](PetscInt row, PetscInt col) -> PetscInt {
+    if (row < rstart || row >= rend) return -1;
+    const PetscInt r = row - rstart;
+    const PetscInt* f = nullptr;
+    if (col >= cstart && col < cend) {
+      f = find(dja + dia[r], dja + dia[r + 1], col - cstart);
+      if (f) return static_cast<PetscInt>(f - dja);
+    } else if (offdiag_) {
+      const PetscInt* g = find(garray, garray + n_garray, col);
+      if (g) f = find(oja + oia[r], oja + oia[r + 1], static_cast<PetscInt>(g - garray));
+      if (f) return -2 - static_cast<PetscInt>(f - oja);
+    }
+    throw std::logic_error("SaddlePointSystem: entry (" + std::to_string(row) + ", " + std::to_string(col) +
+                           ") is not in the preallocated pattern");
+  };
+  auto block = [&](const std::vector<int>& rows, const std::vector<int>& cols) {
+    std::vector<PetscInt> pos;
+    pos.reserve(rows.size() * cols.size());
+    for (int r : rows)
+      for (int c : cols) pos.push_back(position(r, c));
+    return pos;
+  };
+  for (const auto& rows : elem_rows_) elem_pos_.push_back(block(rows, rows));
+  for (size_t c = 0; c < con_rows_.size(); ++c) {
+    con_qq_pos_.push_back(block(con_rows_[c], con_rows_[c]));
+    con_ql_pos_.push_back(block(con_rows_[c], con_mults_[c]));
+    con_lq_pos_.push_back(block(con_mults_[c], con_rows_[c]));
+    std::vector<PetscInt> diag;
+    for (int g : con_mults_[c]) diag.push_back(position(g, g));
+    con_ll_pos_.push_back(diag);
+  }
+  for (int i = 0; i < sub_.num_owned_dofs(); ++i) {
+    const int g = sub_.dof_indices()[static_cast<size_t>(i)];
+    dof_diag_pos_.push_back(position(g, g));
+  }
+  PetscCall(MatRestoreRowIJ(diag_, 0, PETSC_FALSE, PETSC_FALSE, &nrows, &dia, &dja, &done));
+  if (offdiag_) PetscCall(MatRestoreRowIJ(offdiag_, 0, PETSC_FALSE, PETSC_FALSE, &nrows, &oia, &oja, &done));
+  PetscFunctionReturn(0);
+}
+
+template <class Value>
+PetscErrorCode SaddlePointSystem::add_mapped(const std::vector<PetscInt>& pos, const std::vector<int>& rows,
+                                             const std::vector<int>& cols, const Value& value) {
+  PetscFunctionBeginUser;
+  const size_t m = cols.size();
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const PetscInt* p = pos.data() + i * m;
+    const Eigen::Index ii = static_cast<Eigen::Index>(i);
+    if (m > 0 && p[0] == -1) {  // a ghost node's row: to its owner through the stash
+      row_buffer_.resize(m);
+      for (size_t j = 0; j < m; ++j) row_buffer_[j] = value(ii, static_cast<Eigen::Index>(j));
+      PetscCall(MatSetValues(S_, 1, &rows[i], static_cast<PetscInt>(m), cols.data(), row_buffer_.data(), ADD_VALUES));
+      continue;
+    }
+    for (size_t j = 0; j < m; ++j) {
+      const double v = value(ii, static_cast<Eigen::Index>(j));
+      if (p[j] >= 0) d_a_[p[j]] += v;
+      else o_a_[-2 - p[j]] += v;
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -133,10 +242,17 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   std::string local_error;
   try {
     // Tests of error handling: one rank adds nothing, which leaves rows of the matrix zero.
+    if (matrix) {
+      PetscCall(MatSeqAIJGetArray(diag_, &d_a_));
+      if (offdiag_) PetscCall(MatSeqAIJGetArray(offdiag_, &o_a_));
+    }
     if (!(matrix && fault_injected("singular"))) PetscCall(add_local_contributions(s, c, rows, matrix));
   } catch (const std::exception& e) {
     local_error = e.what();
   }
+  if (d_a_) PetscCall(MatSeqAIJRestoreArray(diag_, &d_a_));
+  if (o_a_) PetscCall(MatSeqAIJRestoreArray(offdiag_, &o_a_));
+  d_a_ = o_a_ = nullptr;
   PetscCall(raise_if_any_rank_failed(local_error));
   if (matrix) {
     PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
@@ -168,8 +284,8 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
   PetscFunctionBeginUser;
   const bool elements_in = rows == ConstraintRows::Acceleration || rows == ConstraintRows::Dynamic;
   const double sc = c.row_scale;
-  LocalState ls;
-  LocalResidual lr;
+  LocalState& ls = ls_;
+  LocalResidual& lr = lr_;
   for (size_t e = 0; e < model_.elements().size(); ++e) {
     const auto& idx = elem_dofs_[e];
     const auto& g = elem_rows_[e];
@@ -177,81 +293,82 @@ PetscErrorCode SaddlePointSystem::add_local_contributions(const MechanicalState&
     // Element tangents are also needed without the element residuals when the matrix weights the
     // projection rows by the mass (mass-weighted velocity projection of the consistent start).
     const bool tangents_only = !elements_in && matrix && c.mass != 0.0;
-    if (elements_in || tangents_only) {
-      ls.q = gather(s.q, elem_confs_[e]);
-      ls.v = gather(s.v, idx);
-      ls.qdd = gather(s.qdd, idx);
-      ls.t = s.t;
-      ls.load_factor = c.load_factor;
-      lr.reset(n, matrix);
-      model_.elements()[e]->evaluate(ls, lr, matrix);
-      if (matrix && c.increment) apply_tangent_operator(model_, model_.elements()[e]->nodes(), *c.increment, lr.K);
-      if (elements_in) {
-        const Eigen::VectorXd re = sc * lr.r;
-        PetscCall(VecSetValues(r_, n, g.data(), re.data(), ADD_VALUES));
-      }
+    if (!elements_in && !tangents_only) continue;  // nothing of this element in r or S
+    gather_to(s.q, elem_confs_[e], ls.q);
+    gather_to(s.v, idx, ls.v);
+    gather_to(s.qdd, idx, ls.qdd);
+    ls.t = s.t;
+    ls.load_factor = c.load_factor;
+    lr.reset(n, matrix);
+    model_.elements()[e]->evaluate(ls, lr, matrix);
+    if (matrix && c.increment) apply_tangent_operator(model_, model_.elements()[e]->nodes(), *c.increment, lr.K);
+    if (elements_in) {
+      lr.r *= sc;
+      PetscCall(VecSetValues(r_, n, g.data(), lr.r.data(), ADD_VALUES));
     }
     if (matrix) {
-      // The pattern must hold every entry from the first assembly on, even with zero values.
-      const RowMajor block = elements_in     ? RowMajor(sc * (c.mass * lr.M + c.damping * lr.C + c.stiffness * lr.K))
-                             : tangents_only ? RowMajor(sc * c.mass * lr.M)
-                                             : RowMajor::Zero(n, n);
-      PetscCall(add_block(S_, g, g, block));
+      const double cm = sc * c.mass, cc = elements_in ? sc * c.damping : 0.0, ck = elements_in ? sc * c.stiffness : 0.0;
+      const Eigen::MatrixXd &M = lr.M, &C = lr.C, &K = lr.K;
+      PetscCall(add_mapped(elem_pos_[e], g, g,
+                           [&](Eigen::Index i, Eigen::Index j) { return cm * M(i, j) + cc * C(i, j) + ck * K(i, j); }));
     }
   }
 
-  Eigen::VectorXd phi, extra;
-  Eigen::MatrixXd phi_q, kc;
   for (size_t k = 0; k < model_.constraints().size(); ++k) {
     const Constraint& con = *model_.constraints()[k];
     const auto& idx = con_dofs_[k];
     const int n = static_cast<int>(idx.size()), m = con.size();
-    const Eigen::VectorXd q = gather(s.q, con_confs_[k]);
-    const Eigen::VectorXd lam = s.lambda.segment(model_.first_multiplier(static_cast<int>(k)), m);
-    con.evaluate(q, s.t, phi, phi_q);
+    gather_to(s.q, con_confs_[k], q_con_);
+    lam_con_ = s.lambda.segment(model_.first_multiplier(static_cast<int>(k)), m);
+    con.evaluate(q_con_, s.t, phi_, phi_q_);
 
-    Eigen::VectorXd rc;  // multiplier rows
-    switch (rows) {
+    switch (rows) {  // multiplier rows
       case ConstraintRows::Position:
-      case ConstraintRows::Dynamic: rc = phi; break;
+      case ConstraintRows::Dynamic: rc_ = phi_; break;
       case ConstraintRows::Velocity:
-        con.time_derivative(q, s.t, extra);
-        rc = phi_q * gather(s.v, idx) + extra;
+        con.time_derivative(q_con_, s.t, extra_);
+        gather_to(s.v, idx, v_con_);
+        rc_.noalias() = phi_q_ * v_con_;
+        rc_ += extra_;
         break;
       case ConstraintRows::Acceleration:
-        con.acceleration_term(q, gather(s.v, idx), s.t, extra);
-        rc = phi_q * gather(s.qdd, idx) + extra;
+        gather_to(s.v, idx, v_con_);
+        con.acceleration_term(q_con_, v_con_, s.t, extra_);
+        gather_to(s.qdd, idx, v_con_);
+        rc_.noalias() = phi_q_ * v_con_;
+        rc_ += extra_;
         break;
     }
-    PetscCall(VecSetValues(r_, m, con_mults_[k].data(), rc.data(), ADD_VALUES));
+    PetscCall(VecSetValues(r_, m, con_mults_[k].data(), rc_.data(), ADD_VALUES));
     if (elements_in) {
-      const Eigen::VectorXd rq = sc * phi_q.transpose() * lam;
-      PetscCall(VecSetValues(r_, n, con_rows_[k].data(), rq.data(), ADD_VALUES));
+      rq_.noalias() = sc * phi_q_.transpose() * lam_con_;
+      PetscCall(VecSetValues(r_, n, con_rows_[k].data(), rq_.data(), ADD_VALUES));
     }
     if (matrix) {
-      RowMajor kblock = RowMajor::Zero(n, n);
+      // The pattern holds every entry already (preallocation); zero blocks are simply not added.
       if (c.stiffness != 0.0 && elements_in) {
-        con.geometric_stiffness(q, s.t, lam, kc);
-        if (c.increment) apply_tangent_operator(model_, con.nodes(), *c.increment, kc);
-        kblock = sc * c.stiffness * kc;
+        con.geometric_stiffness(q_con_, s.t, lam_con_, kc_);
+        if (c.increment) apply_tangent_operator(model_, con.nodes(), *c.increment, kc_);
+        const double ck = sc * c.stiffness;
+        PetscCall(add_mapped(con_qq_pos_[k], con_rows_[k], con_rows_[k],
+                             [&](Eigen::Index i, Eigen::Index j) { return ck * kc_(i, j); }));
       }
-      PetscCall(add_block(S_, con_rows_[k], con_rows_[k], kblock));
       // ∂(Φ_qᵀλ)/∂λ = Φ_qᵀ; but ∂Φ(q_n ∘ exp(x))/∂x = Φ_q T(x) in the multiplier rows.
-      const RowMajor bt = sc * c.multiplier_scale * phi_q.transpose();
-      PetscCall(add_block(S_, con_rows_[k], con_mults_[k], bt));
-      if (c.increment && rows == ConstraintRows::Dynamic) apply_tangent_operator(model_, con.nodes(), *c.increment, phi_q);
-      const RowMajor b = phi_q;
-      PetscCall(add_block(S_, con_mults_[k], con_rows_[k], b));
-      // Explicit zeros on the multiplier diagonal keep it in the pattern (some factorizations want it).
-      for (int g : con_mults_[k]) PetscCall(MatSetValue(S_, g, g, 0.0, ADD_VALUES));
+      const double cl = sc * c.multiplier_scale;
+      PetscCall(add_mapped(con_ql_pos_[k], con_rows_[k], con_mults_[k],
+                           [&](Eigen::Index i, Eigen::Index j) { return cl * phi_q_(j, i); }));
+      if (c.increment && rows == ConstraintRows::Dynamic) apply_tangent_operator(model_, con.nodes(), *c.increment, phi_q_);
+      PetscCall(add_mapped(con_lq_pos_[k], con_mults_[k], con_rows_[k],
+                           [&](Eigen::Index i, Eigen::Index j) { return phi_q_(i, j); }));
     }
   }
 
-  if (matrix) {
-    // Diagonal of every owned node unknown: c_I (projections) or an explicit zero (pattern).
-    for (int i = 0; i < sub_.num_owned_dofs(); ++i) {
-      const PetscInt g = sub_.dof_indices()[static_cast<size_t>(i)];
-      PetscCall(MatSetValue(S_, g, g, sc * c.identity, ADD_VALUES));
+  if (matrix && c.identity != 0.0) {
+    // Diagonal of every owned node unknown: c_I of the projections (in the pattern in any case).
+    const double v = sc * c.identity;
+    for (PetscInt p : dof_diag_pos_) {
+      if (p >= 0) d_a_[p] += v;
+      else o_a_[-2 - p] += v;  // (never: a diagonal entry is in the diagonal part)
     }
   }
   PetscFunctionReturn(0);

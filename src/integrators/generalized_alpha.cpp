@@ -85,10 +85,26 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   s.qdd = -x.dofs;
   s.lambda = -x.multipliers;
   a_ = s.qdd;  // a_0 = q̈_0 (eq. 3)
+  factored_h_ = 0.0;  // the solves above factored other matrices
   return sub.max_abs(m.difference(q_in, s.q));
 }
 
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
+  bool used_old_matrix = false;
+  if (!opt_.newton.modified) return try_step(s, h, false, used_old_matrix);
+  try {
+    return try_step(s, h, true, used_old_matrix);
+  } catch (const SolverError&) {
+    // A factorization from an earlier state may be too far off for this step: full Newton from the
+    // same start decides whether the step itself fails (try_step leaves `s` as it was).
+    if (!used_old_matrix) throw;
+    factored_h_ = 0.0;
+    StepReport again = try_step(s, h, false, used_old_matrix);
+    return again;
+  }
+}
+
+StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, bool allow_reuse, bool& used_old_matrix) {
   const Subdomain& sub = lin_.system().subdomain();
   const Model& model = lin_.model();
   const double am = p_.alpha_m, af = p_.alpha_f, beta = p_.beta, gamma = p_.gamma;
@@ -132,8 +148,19 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
   ModelVector r;
   const NewtonOptions& nt = opt_.newton;
   bool converged = false;
+  // Modified Newton: whether the S_t factored now belongs to this h and may be used.
+  bool fresh = !(allow_reuse && factored_h_ == h);
+  double prev_q = 0.0, prev_l = 0.0;  // ‖Δq‖∞, ‖Δλ‖∞ of the previous iteration
   for (int it = 1; it <= nt.max_iterations && !converged; ++it) {
-    const ModelVector x = lin_.solve(n1, c, ConstraintRows::Dynamic, &r);
+    const bool reuse = allow_reuse && !fresh;
+    if (reuse) {
+      used_old_matrix = true;
+      ++reused_;
+    }
+    const ModelVector x = reuse ? lin_.solve_with_last_factorization(n1, c, ConstraintRows::Dynamic, &r)
+                                : lin_.solve(n1, c, ConstraintRows::Dynamic, &r);
+    factored_h_ = h;
+    fresh = false;
     Eigen::VectorXd dq = -x.dofs;
     if (fault_injected("newton") && dq.size()) dq[0] = std::numeric_limits<double>::quiet_NaN();  // tests only
     const Eigen::VectorXd dl = -c.multiplier_scale * x.multipliers;
@@ -146,7 +173,27 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
     report.history.push_back(rec);
     report.iterations = it;
     if (!std::isfinite(rec.correction_q) || !std::isfinite(rec.correction_lambda)) break;
-    converged = newton_converged(nt, rec, it, sub.max_abs(n1.q), sub.max_abs(n1.lambda));
+    if (!reuse) {
+      converged = newton_converged(nt, rec, it, sub.max_abs(n1.q), sub.max_abs(n1.lambda));
+    } else if (it > 1) {
+      // Linear convergence with the old S_t: test the error estimate θ/(1−θ)‖Δ_k‖ (Hairer &
+      // Wanner IV.8.13), θ the larger contraction of q and λ; θ ≥ max_contraction: refactor.
+      const double theta = std::max(prev_q > 0.0 ? rec.correction_q / prev_q : 0.0,
+                                    prev_l > 0.0 ? rec.correction_lambda / prev_l : 0.0);
+      if (theta < 1.0) {
+        NewtonRecord estimate = rec;
+        estimate.correction_q *= theta / (1.0 - theta);
+        estimate.correction_lambda *= theta / (1.0 - theta);
+        converged = newton_converged(nt, estimate, it, sub.max_abs(n1.q), sub.max_abs(n1.lambda));
+      }
+      if (!converged && theta >= nt.max_contraction) {
+        fresh = true;
+        ++refreshes_;
+      }
+    }
+    // (The first iteration with an old S_t has no rate yet: one more iteration measures it.)
+    prev_q = rec.correction_q;
+    prev_l = rec.correction_lambda;
   }
   if (!converged) {
     std::ostringstream os;

@@ -72,6 +72,26 @@ ModelVector LinearizedSystem::solve(const MechanicalState& s, const AssemblyCoef
   return x;
 }
 
+ModelVector LinearizedSystem::solve_with_last_factorization(const MechanicalState& s, const AssemblyCoefficients& c,
+                                                           ConstraintRows rows, ModelVector* residual) {
+  double t0 = MPI_Wtime();
+  PetscLogEventBegin(ev_assembly, 0, 0, 0, 0);
+  // S is left as it was factored: PETSc sees no change of its state and does not refactor.
+  check_petsc(sys_.assemble(s, c, rows, false), "assembly");
+  if (residual) check_petsc(sys_.to_model(sys_.residual(), *residual), "residual gather");
+  PetscLogEventEnd(ev_assembly, 0, 0, 0, 0);
+  double t1 = MPI_Wtime();
+  times_.assembly += t1 - t0;
+  PetscLogEventBegin(ev_solve, 0, 0, 0, 0);
+  check_petsc(solver_.solve(sys_.residual(), sys_.solution()), "solve");
+  PetscLogEventEnd(ev_solve, 0, 0, 0, 0);
+  if (!solver_.failure().empty()) throw SolverError(solver_.failure());
+  ModelVector x;
+  check_petsc(sys_.to_model(sys_.solution(), x), "solution gather");
+  times_.solve += MPI_Wtime() - t1;
+  return x;
+}
+
 std::string LinearizedSystem::describe_largest(const ModelVector& r) const {
   // Collective: the rank holding the largest entry names it (its node or joint), every rank gets
   // the text. Only owned coordinates compete (a ghost's entry is its owner's).

@@ -95,12 +95,18 @@ void read_solver(Reader& rd, const YAML::Node& s, RunSettings& rs, std::vector<s
   if (s["scaling"]) rs.integrator.scaling = rd.flag(s["scaling"], "solver.scaling");
   if (s["consistent_start"]) rs.integrator.consistent_start = rd.flag(s["consistent_start"], "solver.consistent_start");
   if (const YAML::Node n = s["newton"]) {
-    rd.keys(n, "solver.newton", {"max_iter", "rtol", "atol", "atol_lambda"});
+    rd.keys(n, "solver.newton", {"max_iter", "rtol", "atol", "atol_lambda", "modified", "max_contraction"});
     NewtonOptions& o = rs.integrator.newton;
     if (n["max_iter"]) o.max_iterations = rd.integer(n["max_iter"], "solver.newton.max_iter", 1);
     if (n["rtol"]) o.rtol = rd.positive(n["rtol"], "solver.newton.rtol", "tolerance");
     if (n["atol"]) o.atol = rd.non_negative(n["atol"], "solver.newton.atol", "tolerance (m, rad)");
     if (n["atol_lambda"]) o.atol_lambda = rd.non_negative(n["atol_lambda"], "solver.newton.atol_lambda", "tolerance (N)");
+    if (n["modified"]) o.modified = rd.flag(n["modified"], "solver.newton.modified");
+    if (n["max_contraction"]) {
+      o.max_contraction = rd.positive(n["max_contraction"], "solver.newton.max_contraction", "contraction rate");
+      if (o.max_contraction >= 1.0)
+        rd.fail(n["max_contraction"], "solver.newton.max_contraction", "a contraction rate in (0, 1)");
+    }
   }
   rs.statics.newton = rs.integrator.newton;
 }

@@ -38,6 +38,9 @@ struct RunSummary {
   int newton_max = 0;
   int unknowns = 0, coordinates = 0, multipliers = 0;
   int factorizations = 0, symbolic_analyses = 0;
+  /// Modified Newton: iterations on a factorization kept from before, refactorizations forced by a
+  /// contraction rate above solver.newton.max_contraction (-1: full Newton).
+  long reused_iterations = -1, contraction_refreshes = 0;
   double wall = 0.0;
   double projection = 0.0;  ///< largest change of q0 by the consistent start
   PhaseTimes times;

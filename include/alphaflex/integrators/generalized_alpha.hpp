@@ -14,6 +14,17 @@
 // amplified by 1/h² in λ (eq. 34), so the order would be lost at small h. The λ test is waived
 // once Δq is at round-off level (≤ 10⁴ ε ‖q‖): λ then carries the round-off of q times
 // β' ~ 1/(βh²), which no further iteration removes.
+//
+// Modified Newton (NewtonOptions::modified): S_t is kept factored across iterations and steps. The
+// iteration then converges linearly with a rate θ_k = ‖Δ_k‖/‖Δ_{k−1}‖, and a small last correction
+// no longer means a small error: the error left after Δ_k is about θ/(1−θ)‖Δ_k‖ (the estimate of
+// simplified Newton in Hairer & Wanner, Solving ODEs II, Sec. IV.8, eq. 8.13), which is what the
+// stopping rule tests instead of ‖Δ_k‖. S_t is assembled and factored afresh when θ exceeds
+// max_contraction, when h changes (β', γ' and the scaling are in S_t), after the consistent start
+// and after a checkpoint (so that a restart repeats the run bit for bit); a step that fails with an
+// old S_t is repeated with full Newton before the failure is reported. Positions, velocities and
+// multipliers converge to the same solution of the step's equations, so the scheme's order is kept
+// (tests/unit/test_modified_newton.cpp).
 #include <string>
 #include <vector>
 
@@ -54,6 +65,12 @@ class GeneralizedAlpha {
   const AlphaParameters& parameters() const { return p_; }
   const Eigen::VectorXd& auxiliary() const { return a_; }
   void set_auxiliary(const Eigen::VectorXd& a) { a_ = a; }
+  /// The next step assembles and factors S_t afresh (modified Newton; e.g. after a checkpoint).
+  void invalidate_factorization() { factored_h_ = 0.0; }
+  /// Factorizations of S_t kept from an earlier iteration (modified Newton), and refactorizations
+  /// forced by a slow contraction.
+  long reused_iterations() const { return reused_; }
+  long contraction_refreshes() const { return refreshes_; }
   const PhaseTimes& times() const { return lin_.times(); }
   PhaseTimes& times() { return lin_.times(); }
 
@@ -62,6 +79,10 @@ class GeneralizedAlpha {
   AlphaParameters p_;
   IntegratorOptions opt_;
   Eigen::VectorXd a_;
+  double factored_h_ = 0.0;  ///< h of the S_t now factored (0: none usable)
+  long reused_ = 0, refreshes_ = 0;
+
+  StepReport try_step(MechanicalState& s, double h, bool allow_reuse, bool& used_old_matrix);
 };
 
 }  // namespace alphaflex

@@ -20,6 +20,11 @@ struct NewtonOptions {
   double rtol = 1e-9;          ///< relative size of the last correction (q and λ)
   double atol = 1e-12;         ///< absolute, for coordinates (m, rad)
   double atol_lambda = 1e-9;   ///< absolute, for multipliers (N, N·m)
+  /// Modified Newton (scene key solver.newton.modified): keep the factorization of S_t across
+  /// iterations and steps, and refactorize only when the contraction rate θ = ‖Δ_k‖/‖Δ_{k−1}‖
+  /// exceeds max_contraction, when h changes, or after a checkpoint (generalized_alpha.hpp).
+  bool modified = false;
+  double max_contraction = 0.5;  ///< θ above which S_t is assembled and factored afresh
 };
 
 struct NewtonRecord {
@@ -56,6 +61,10 @@ class LinearizedSystem {
   /// SolverError on failure; InputError if `initializing` and the model itself is singular.
   ModelVector solve(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
                     ModelVector* residual);
+  /// The same with the last factorization kept: only r is assembled (no tangents), then solved
+  /// with the factors of an earlier S (modified Newton).
+  ModelVector solve_with_last_factorization(const MechanicalState& s, const AssemblyCoefficients& c,
+                                            ConstraintRows rows, ModelVector* residual);
   /// "largest equilibrium residual … at node '…' (…); largest constraint violation … in joint '…'".
   std::string describe_largest(const ModelVector& r) const;
 
