@@ -100,8 +100,9 @@ def differential(a, b):
     for phase in PHASES:
         row[phase + "_s"] = d[phase] / s
     row["factorization_share"] = d["factorization"] / d["wall"] if d["wall"] > 0 else 0.0
-    # One Newton iteration against one numeric factorization + solve of the same matrix.
-    per_iteration = d["wall"] / max(d["newton"], 1)
+    # One Newton iteration (the step without its output) against one numeric factorization + solve
+    # of the same matrix.
+    per_iteration = (d["wall"] - d["output"]) / max(d["newton"], 1)
     per_factor_solve = d["factorization"] / max(d["factorizations"], 1) + d["solve"] / max(d["newton"], 1)
     row["iteration_over_factor_solve"] = per_iteration / per_factor_solve if per_factor_solve > 0 else float("nan")
     for k in ("rss_mb", "rss_max_mb", "scene_mb", "mumps_mb", "mumps_entries", "checkpoint_mb", "checkpoint_s", "setup"):
@@ -113,7 +114,13 @@ def differential(a, b):
 
 
 def pct(x, k):
-    return f"{100 * x[k + '_s'] / x['step_s']:.0f} %" if x["step_s"] > 0 else "–"
+    """Share of a phase in the step. A phase that does not grow with the steps (e.g. the one
+    factorization modified Newton keeps for the whole run) has a difference within timing noise,
+    possibly negative: shown as ~0."""
+    if x["step_s"] <= 0:
+        return "–"
+    v = 100 * x[k + "_s"] / x["step_s"]
+    return f"{v:.0f} %" if v >= 0.5 else "~0 %"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -472,16 +479,23 @@ def case_large(exe, work, n, ranks):
 
 
 def section_large(r):
+    ratio = (r["assembly"] + r["factorization"] + r["solve"]) / (r["factorization"] + r["solve"])
     lines = ["## 5. About 10⁶ unknowns on this machine", "",
              f"Gridshell n = {r['n']} on {r['ranks']} ranks, one step of h = 0.01 s with output: {r['unknowns']} unknowns, peak "
              f"resident {r['rss_mb']:.0f} MB in all ranks ({r['rss_max_mb']:.0f} MB largest), {1e6 * r['rss_mb'] / r['unknowns']:.0f} "
              f"bytes per unknown; MUMPS {r['mumps_mb']:.0f} MB, {r['mumps_entries']:.3g} entries in the factors, "
              f"{r['mumps_flops'] / 1e9:.3g} Gflop per factorization; {r['newton']} Newton iterations; wall time of the run "
              f"{r['wall']:.1f} s (setup {r['setup']:.1f} s, assembly {r['assembly']:.1f} s, factorization {r['factorization']:.1f} s, "
-             f"solve {r['solve']:.1f} s, output {r['output']:.1f} s), {r['process']:.0f} s with reading and meshing."]
-    target = {"name": "10⁶ unknowns fit in 24 GiB", "met": r["rss_mb"] < 24 * 1024,
-              "figure": f"{r['unknowns']} unknowns in {r['rss_mb'] / 1024:.1f} GiB"}
-    return lines, target
+             f"solve {r['solve']:.1f} s, output {r['output']:.1f} s), {r['process']:.0f} s with reading and meshing. "
+             f"The scene's whole model, which every rank holds, took {r['scene_mb']:.0f} MB per rank "
+             f"({1e6 * r['scene_mb'] / r['unknowns']:.0f} bytes per unknown). Over the run's linear systems (consistent "
+             f"start and Newton iterations alike), assembly + factorization + solve over factorization + solve is "
+             f"{ratio:.2f}."]
+    targets = [{"name": "10⁶ unknowns fit in 24 GiB", "met": r["rss_mb"] < 24 * 1024,
+                "figure": f"{r['unknowns']} unknowns in {r['rss_mb'] / 1024:.1f} GiB on 2 ranks, {r['wall']:.0f} s for the run of one step"},
+               {"name": "At ~10⁶ unknowns: a linear system ≤ 1.25 × (factorization + solve)", "met": ratio <= 1.25,
+                "figure": f"{ratio:.2f} at {r['unknowns']} unknowns, 2 ranks"}]
+    return lines, targets
 
 
 def git_revision():
@@ -546,9 +560,9 @@ def main():
         record_rows += rows
     if "large" in cases and not a.quick:
         r = case_large(exes[0][1], work, a.large_n, 2)
-        lines, t = section_large(r)
+        lines, ts = section_large(r)
         sections.append(lines)
-        targets.append(t)
+        targets += ts
         record_rows.append({"case": "large", "exe": "this", "n": r["n"], "ranks": r["ranks"], "unknowns": r["unknowns"],
                             "rss_mb": r["rss_mb"], "mumps_mb": r["mumps_mb"], "step_s": r["wall"]})
     if "small" in cases:

@@ -482,6 +482,27 @@ TEST(SpatialJoint, GeometricStiffnessMatchesFiniteDifferencesOfPhiQTransposeLamb
   }
 }
 
+// The closed form of K_Φ (dot products of marker axes, points and d: spatial_joints.cpp) against
+// nested forward AD of the joint equations (model/spatial_kernel.hpp), which computes the same mixed
+// derivatives by another route: equal to round-off for every joint type, driver and ground case.
+TEST(SpatialJoint, ClosedFormGeometricStiffnessEqualsNestedAutomaticDifferentiation) {
+  std::mt19937 rng(401);
+  for (const JointCase& c : joint_cases()) {
+    for (int i = 0; i < kSamples; ++i) {
+      SCOPED_TRACE(c.label + ", random configuration #" + std::to_string(i));
+      const Eigen::VectorXd q = violated(rng, c);
+      const Eigen::VectorXd lambda = random_vector(rng, c.joint->size(), -2.0, 2.0);
+      Eigen::MatrixXd closed, by_ad;
+      c.joint->geometric_stiffness(q, kT, lambda, closed);
+      c.joint->geometric_stiffness_by_ad(q, kT, lambda, by_ad);
+      ASSERT_EQ(closed.rows(), by_ad.rows());
+      ASSERT_EQ(closed.cols(), by_ad.cols());
+      EXPECT_LE((closed - by_ad).cwiseAbs().maxCoeff(), 1e-13 * std::max(1.0, by_ad.cwiseAbs().maxCoeff()))
+          << "closed form:\n" << closed.format(kFmt) << "\nAD:\n" << by_ad.format(kFmt);
+    }
+  }
+}
+
 TEST(SpatialJoint, TimeDerivativeMatchesFiniteDifferencesInTimeAndVanishesWithoutDrivers) {
   std::mt19937 rng(500);
   for (const JointCase& c : joint_cases()) {

@@ -68,8 +68,14 @@ class SpatialJoint final : public Constraint {
   const SpatialMarker& marker_b() const { return b_; }
 
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
+  /// K_Φ = ∂(Φ_qᵀλ)/∂δ' in closed form (every equation is a sum of dot products of marker axes,
+  /// points and d: spatial_joints.cpp), ~20× cheaper than nested AD.
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
                            Eigen::MatrixXd& k) const override;
+  /// The same by nested forward AD of the equations (model/spatial_kernel.hpp): the check of the
+  /// closed form in the tests.
+  void geometric_stiffness_by_ad(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
+                                 Eigen::MatrixXd& k) const;
   void time_derivative(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi_t) const override;
   void acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t,
                          Eigen::VectorXd& c) const override;
