@@ -153,8 +153,8 @@ void GeometricallyExactBeam::elastic_forces_from_energy(const Eigen::VectorXd& q
 
 void GeometricallyExactBeam::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
   if (tangent) {
-    Eigen::VectorXd r;
-    Eigen::MatrixXd K;
+    KernelValue r;  // fixed capacity: no heap allocation per element
+    KernelJacobian K;
     kernel_jacobian(ElasticResidual{*this}, s.q, s.t, r, K);
     out.r += r;
     out.K += K;

@@ -48,8 +48,8 @@ void SpatialLoad::evaluate(const LocalState& s, LocalResidual& out, bool tangent
   // The kernel carries the load factor of this evaluation (no state in the element).
   const double factor = s.load_factor;
   const auto kernel = [this, factor](const auto* frames, const auto& t, auto& out) { residual(frames, t, factor, out); };
-  Eigen::VectorXd r;
-  Eigen::MatrixXd K;
+  KernelValue r;  // fixed capacity: no heap allocation per element
+  KernelJacobian K;
   if (tangent) {
     kernel_jacobian(kernel, s.q, s.t, r, K);
     out.K += K;

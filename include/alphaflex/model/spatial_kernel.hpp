@@ -61,6 +61,9 @@ double value(const Eigen::AutoDiffScalar<D>& x) {
 /// Largest number of outputs of one kernel (a two-node beam's residual: 12).
 constexpr int kMaxKernelOutputs = 16;
 template <class S> using KernelVector = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, kMaxKernelOutputs, 1>;
+/// Fixed-capacity results of kernel_jacobian (at most kMaxKernelOutputs outputs, 12 variables).
+using KernelValue = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxKernelOutputs, 1>;
+using KernelJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxKernelOutputs, 12>;
 
 /// Position and rotation of a frame.
 template <class S>
@@ -192,8 +195,8 @@ Pose<ad::FixedAD2<N>> seeded_pose2(const Pose<double>& p, int first) {
   return s;
 }
 
-template <int N, class Fn>
-void jacobian_fixed(const Fn& f, const Poses& p, double t, Eigen::VectorXd& value, Eigen::MatrixXd& J) {
+template <int N, class Fn, class Value, class Jacobian>
+void jacobian_fixed(const Fn& f, const Poses& p, double t, Value& value, Jacobian& J) {
   using A = ad::FixedAD1<N>;
   std::array<Pose<A>, N / 6> ps;
   for (int k = 0; k < N / 6; ++k) ps[static_cast<size_t>(k)] = seeded_pose1<N>(p[static_cast<size_t>(k)], 6 * k);
@@ -224,8 +227,8 @@ void second_fixed(const Fn& f, const Poses& p, double t, const Eigen::VectorXd& 
 }  // namespace kernel_detail
 
 /// f(q, t) in doubles.
-template <class Fn>
-void kernel_value(const Fn& f, const Eigen::VectorXd& q, double t, Eigen::VectorXd& out) {
+template <class Fn, class Value>
+void kernel_value(const Fn& f, const Eigen::VectorXd& q, double t, Value& out) {
   const auto p = kernel_detail::poses(q, kernel_detail::frames_in(q));
   KernelVector<double> r;
   f(p.data(), t, r);
@@ -233,8 +236,10 @@ void kernel_value(const Fn& f, const Eigen::VectorXd& q, double t, Eigen::Vector
 }
 
 /// f and J = ∂f(q ∘ exp(δ))/∂δ (rows: outputs, columns: 6 per frame).
-template <class Fn>
-void kernel_jacobian(const Fn& f, const Eigen::VectorXd& q, double t, Eigen::VectorXd& value, Eigen::MatrixXd& J) {
+/// Value and J may be fixed-capacity Eigen types (KernelValue, KernelJacobian below): no heap
+/// allocation in element kernels.
+template <class Fn, class Value, class Jacobian>
+void kernel_jacobian(const Fn& f, const Eigen::VectorXd& q, double t, Value& value, Jacobian& J) {
   const int nf = kernel_detail::frames_in(q);
   const auto p = kernel_detail::poses(q, nf);
   if (nf == 1) kernel_detail::jacobian_fixed<6>(f, p, t, value, J);
