@@ -237,9 +237,10 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
       sum.projection = integrator.initialize(s);
     } catch (const InputError& e) {
       throw InputError(scene.file + ": " + e.what());  // the model as given cannot start
-    } catch (const SolverError& e) {
+    } catch (const ConfigurationError& e) {
       // Before the first step the state is the scene's own (projected onto its joints): an element
       // that cannot be evaluated there (a spring whose points coincide) is a fault of the scene.
+      // Other solver failures of the start (a matrix MUMPS cannot factor) stay solver failures.
       throw InputError(scene.file + ": the scene cannot start (consistent start at t = 0): " + e.what());
     }
   }
