@@ -96,6 +96,10 @@ class Reader {
     try {
       const double v = evaluate_expression(text, scope_);
       if (!std::isfinite(v)) fail(n, key, "'" + text + "' is not a finite number");
+      // The model multiplies values (k·L², m·v², E·I): a value whose square is not a normal double
+      // overflows or vanishes there (a mass of 1e308 made the first matrix singular: tests/fuzz).
+      if (v != 0.0 && !(std::fabs(v) >= 1e-150 && std::fabs(v) <= 1e150))
+        fail(n, key, "'" + text.substr(0, 60) + "' is out of range: expected 0 or a magnitude from 1e-150 to 1e150");
       return v;
     } catch (const std::invalid_argument& e) {
       fail(n, key, std::string("expected a number, ") + e.what());
@@ -325,9 +329,14 @@ class SceneBuilder {
     return id;
   }
 
+  /// The bodies a reference could name, for messages: the first 20 (a meshed model has thousands
+  /// of nodes, all of which were listed: a message of 10⁴ names, found by tests/fuzz).
   std::string known_bodies() const {
+    constexpr size_t kShown = 20;
     std::string s = " (bodies: ";
-    for (const auto& nd : model_.nodes()) s += nd.name + " ";
+    const auto& nodes = model_.nodes();
+    for (size_t i = 0; i < nodes.size() && i < kShown; ++i) s += nodes[i].name + " ";
+    if (nodes.size() > kShown) s += "... (" + std::to_string(nodes.size() - kShown) + " more) ";
     return s + "ground)";
   }
 

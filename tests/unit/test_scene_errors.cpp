@@ -55,6 +55,31 @@ TEST(SceneErrors, OverlongStringIsRefusedNotQuoted) {
   EXPECT_EQ(error_of(yaml), "scene.yaml:3: bodies[0].name: expected a string of at most 4096 characters, got 5000");
 }
 
+// A mass of 1e308 (finite) made the first iteration matrix singular: a SolverError without the
+// file. Values whose square is not a normal double are refused where they are read.
+TEST(SceneErrors, ValuesBeyondTheSquarableRangeAreRefused) {
+  for (const char* v : {"1e308", "-1e151", "1e-308"}) {
+    std::string yaml = kPendulum;
+    yaml.replace(yaml.find("inertia: 0.1"), 12, std::string("inertia: ") + v);
+    EXPECT_EQ(error_of(yaml), "scene.yaml:3: bodies[bar].inertia: '" + std::string(v) +
+                                  "' is out of range: expected 0 or a magnitude from 1e-150 to 1e150");
+  }
+  std::string yaml = kPendulum;
+  yaml.replace(yaml.find("position: [0.5, 0]"), 18, "position: [0.5, 1e-150]");  // the bounds are inside
+  Scene sc = read_scene_text(yaml, "scene.yaml");
+  EXPECT_EQ(sc.model->node(0).q0[1], 1e-150);
+}
+
+// A reference to a body that does not exist lists the known ones: the first 20, not every node.
+TEST(SceneErrors, UnknownBodyListsAtMostTwentyNames) {
+  std::string yaml = "bodies:\n";
+  for (int i = 0; i < 30; ++i)
+    yaml += "  - {name: b" + std::to_string(i) + ", type: particle, mass: 1, position: [" + std::to_string(i) + ", 0]}\n";
+  yaml += "joints:\n  - {name: pin, type: revolute, body1: nobody, body2: ground}\n";
+  EXPECT_EQ(error_of(yaml), "scene.yaml:33: joints[pin].body1: no body named 'nobody' (bodies: b0 b1 b2 b3 b4 b5 b6 b7 b8 b9 "
+                            "b10 b11 b12 b13 b14 b15 b16 b17 b18 b19 ... (10 more) ground)");
+}
+
 // The consistent start moves p onto the spring's ground point: a SolverError of the spring came
 // out of the start without the scene's name; it is the scene's fault, so an InputError naming it.
 TEST(SceneErrors, SpringCollapsingAtTheStartIsAnInputError) {
