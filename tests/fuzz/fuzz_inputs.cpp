@@ -470,6 +470,8 @@ int main(int argc, char** argv) {
         status = 2;
       }
     }
+    // A report from here on (LeakSanitizer runs at exit) belongs to no case.
+    set_banner("  (no case: after the last one, at exit)\n");
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     int nscene = 0, nmsh = 0;
     for (const Seed& s : seeds) (s.msh ? nmsh : nscene)++;
