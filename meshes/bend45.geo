@@ -12,6 +12,16 @@ DefineConstant[
   R = {100, Name "R"},
   n = {8, Name "n"}
 ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(R > 0 && R < 1e12))
+  Error("parameter R = %g: expected a radius > 0 (m)", R);
+  Abort;
+EndIf
+If (!(n >= 1 && n <= 100000 && n == Round(n)))
+  Error("parameter n = %g: expected a whole number of elements from 1 to 100000", n);
+  Abort;
+EndIf
 
 Point(1) = {0, 0, 0};
 Point(2) = {0, R, 0};                                // centre

@@ -9,6 +9,16 @@ DefineConstant[
   L = {1, Name "L"},
   n = {16, Name "n"}
 ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(L > 0 && L < 1e12))
+  Error("parameter L = %g: expected a length > 0 (m)", L);
+  Abort;
+EndIf
+If (!(n >= 1 && n <= 100000 && n == Round(n)))
+  Error("parameter n = %g: expected a whole number of elements from 1 to 100000", n);
+  Abort;
+EndIf
 
 Point(1) = {0, 0, 0};
 Point(2) = {L, 0, 0};

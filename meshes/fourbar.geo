@@ -9,6 +9,12 @@
 // points "A", "B1" (end of bar1), "B2" (start of bar2), "C2" (end of bar2), "C3" (start of bar3), "D".
 // Parameters (ONELAB): n  elements per bar, default 8.
 DefineConstant[ n = {8, Name "n"} ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(n >= 1 && n <= 100000 && n == Round(n)))
+  Error("parameter n = %g: expected a whole number of elements per link from 1 to 100000", n);
+  Abort;
+EndIf
 
 Point(1) = {0, 0, 0};
 Point(2) = {0, 0.12, 0};

@@ -11,6 +11,24 @@
 // Size: 2n((n − 1)k + 1) nodes, i.e. 12n((n − 1)k + 1) coordinates; with the scene's n² swivels
 // (5 equations each) and 2n supports (3 each), n = 48, k = 4 gives 1.2·10⁵ unknowns.
 DefineConstant[ n = {8, Name "n"}, k = {4, Name "k"}, L = {10, Name "L"} ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(n >= 2 && n <= 1024 && n == Round(n)))
+  Error("parameter n = %g: expected a whole number of laths per direction from 2 to 1024", n);
+  Abort;
+EndIf
+If (!(k >= 1 && k <= 1000 && k == Round(k)))
+  Error("parameter k = %g: expected a whole number of elements per bay from 1 to 1000", k);
+  Abort;
+EndIf
+If (!(L > 0 && L < 1e12))
+  Error("parameter L = %g: expected a side > 0 (m)", L);
+  Abort;
+EndIf
+If (!(2 * n * ((n - 1) * k + 1) <= 10000000))
+  Error("parameters give %g nodes: expected at most 1e+07", 2 * n * ((n - 1) * k + 1));
+  Abort;
+EndIf
 d = L / (n - 1);
 
 // Points: x laths first (row i, column j), then y laths.

@@ -10,6 +10,20 @@ DefineConstant[
   n = {16, Name "n"},
   quads = {1, Name "quads"}
 ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(R > 0 && R < 1e12))
+  Error("parameter R = %g: expected a radius > 0 (m)", R);
+  Abort;
+EndIf
+If (!(n >= 1 && n <= 10000 && n == Round(n)))
+  Error("parameter n = %g: expected a whole number of elements per edge from 1 to 10000", n);
+  Abort;
+EndIf
+If (!(quads == 0 || quads == 1))
+  Error("parameter quads = %g: expected 0 or 1", quads);
+  Abort;
+EndIf
 c18 = Cos(18 * Pi / 180);
 s18 = Sin(18 * Pi / 180);
 

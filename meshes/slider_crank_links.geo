@@ -14,6 +14,28 @@ DefineConstant[
   n = {4, Name "n"},
   crank = {0, Name "crank"}
 ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(l1 > 0 && l1 < 1e12))
+  Error("parameter l1 = %g: expected a crank length > 0 (m)", l1);
+  Abort;
+EndIf
+If (!(l2 > 0 && l2 < 1e12))
+  Error("parameter l2 = %g: expected a rod length > 0 (m)", l2);
+  Abort;
+EndIf
+If (!(theta1 > -1e12 && theta1 < 1e12))
+  Error("parameter theta1 = %g: expected a finite angle (rad)", theta1);
+  Abort;
+EndIf
+If (!(n >= 1 && n <= 100000 && n == Round(n)))
+  Error("parameter n = %g: expected a whole number of elements per link from 1 to 100000", n);
+  Abort;
+EndIf
+If (!(crank == 0 || crank == 1))
+  Error("parameter crank = %g: expected 0 or 1", crank);
+  Abort;
+EndIf
 xh = l1*Cos(theta1);
 yh = l1*Sin(theta1);
 x3 = xh + Sqrt(l2^2 - (l1*Sin(theta1))^2);

@@ -12,6 +12,32 @@ DefineConstant[
   nt = {80, Name "nt"},
   quads = {1, Name "quads"}
 ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(Ri > 0 && Ri < 1e12))
+  Error("parameter Ri = %g: expected a inner radius > 0 (m)", Ri);
+  Abort;
+EndIf
+If (!(Ro > 0 && Ro < 1e12))
+  Error("parameter Ro = %g: expected a outer radius > 0 (m)", Ro);
+  Abort;
+EndIf
+If (!(nr >= 1 && nr <= 10000 && nr == Round(nr)))
+  Error("parameter nr = %g: expected a whole number of radial elements from 1 to 10000", nr);
+  Abort;
+EndIf
+If (!(nt >= 1 && nt <= 10000 && nt == Round(nt)))
+  Error("parameter nt = %g: expected a whole number of circumferential elements from 1 to 10000", nt);
+  Abort;
+EndIf
+If (!(quads == 0 || quads == 1))
+  Error("parameter quads = %g: expected 0 or 1", quads);
+  Abort;
+EndIf
+If (!(nr * nt <= 10000000))
+  Error("parameters give %g elements: expected at most 1e+07", nr * nt);
+  Abort;
+EndIf
 
 Point(1) = {0, 0, 0};                 // centre of the arcs
 Point(2) = {Ri, 0, 0};                // A, loaded edge

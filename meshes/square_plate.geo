@@ -7,6 +7,20 @@ DefineConstant[
   n = {8, Name "n"},
   quads = {1, Name "quads"}
 ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(a > 0 && a < 1e12))
+  Error("parameter a = %g: expected a side > 0 (m)", a);
+  Abort;
+EndIf
+If (!(n >= 1 && n <= 10000 && n == Round(n)))
+  Error("parameter n = %g: expected a whole number of elements per side from 1 to 10000", n);
+  Abort;
+EndIf
+If (!(quads == 0 || quads == 1))
+  Error("parameter quads = %g: expected 0 or 1", quads);
+  Abort;
+EndIf
 
 Point(1) = {0, 0, 0};     Point(2) = {a / 2, 0, 0};     Point(3) = {a, 0, 0};
 Point(4) = {0, a / 2, 0}; Point(5) = {a / 2, a / 2, 0}; Point(6) = {a, a / 2, 0};

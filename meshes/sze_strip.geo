@@ -11,6 +11,32 @@ DefineConstant[
   ny = {1, Name "ny"},
   quads = {1, Name "quads"}
 ];
+// Parameter ranges: a value outside them is a gmsh error naming it, before any loop or mesh runs
+// (n = 1e19 made gmsh loop for ever: found by tests/fuzz; meshes/README.md).
+If (!(L > 0 && L < 1e12))
+  Error("parameter L = %g: expected a length > 0 (m)", L);
+  Abort;
+EndIf
+If (!(b > 0 && b < 1e12))
+  Error("parameter b = %g: expected a width > 0 (m)", b);
+  Abort;
+EndIf
+If (!(nx >= 1 && nx <= 10000 && nx == Round(nx)))
+  Error("parameter nx = %g: expected a whole number of elements along the strip from 1 to 10000", nx);
+  Abort;
+EndIf
+If (!(ny >= 1 && ny <= 10000 && ny == Round(ny)))
+  Error("parameter ny = %g: expected a whole number of elements across from 1 to 10000", ny);
+  Abort;
+EndIf
+If (!(quads == 0 || quads == 1))
+  Error("parameter quads = %g: expected 0 or 1", quads);
+  Abort;
+EndIf
+If (!(nx * ny <= 10000000))
+  Error("parameters give %g elements: expected at most 1e+07", nx * ny);
+  Abort;
+EndIf
 
 Point(1) = {0, 0, 0};
 Point(2) = {L, 0, 0};

@@ -120,7 +120,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   // Output files (collective: the ranks agree on success inside, so a failure on one rank does not
   // leave the others waiting).
   std::unique_ptr<ResultsWriter>& writer = o.writer;
-  if (opt.write_results)
+  if (opt.write_results && !opt.stop_after_start)
     writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name, rs.hdf5, rs.commit_interval,
                                              restarting ? &ck.position.results : nullptr);
   if (writer)
@@ -178,6 +178,8 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     return sum;
   };
   MechanicalState s = sub.model().initial_state();
+  // A static solve (the whole analysis or a dynamic run's pre-load) is the run itself.
+  if (opt.stop_after_start && (rs.analysis == Analysis::Static || rs.initial_static)) return sum;
   if (restarting) {
     s = ck.state;
   } else if (rs.analysis == Analysis::Static || rs.initial_static) {
@@ -239,8 +241,14 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
       sum.projection = integrator.initialize(s);
     } catch (const InputError& e) {
       throw InputError(scene.file + ": " + e.what());  // the model as given cannot start
+    } catch (const ConfigurationError& e) {
+      // Before the first step the state is the scene's own (projected onto its joints): an element
+      // that cannot be evaluated there (a spring whose points coincide) is a fault of the scene.
+      // Other solver failures of the start (a matrix MUMPS cannot factor) stay solver failures.
+      throw InputError(scene.file + ": the scene cannot start (consistent start at t = 0): " + e.what());
     }
   }
+  if (opt.stop_after_start) return sum;
 
   const double h = rs.h;
   // Fixed steps: a restart goes on from the checkpoint's step and time with the scene's h, which may

@@ -240,6 +240,7 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   // An element or joint may throw on the rank that owns it (e.g. a spring of zero length). The
   // other ranks would then wait in the assembly below: agree on failure first, then all throw.
   std::string local_error;
+  bool configuration = false;  // a ConfigurationError: keeps its type on every rank
   try {
     // Tests of error handling: one rank adds nothing, which leaves rows of the matrix zero.
     if (matrix) {
@@ -247,13 +248,16 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
       if (offdiag_) PetscCall(MatSeqAIJGetArray(offdiag_, &o_a_));
     }
     if (!(matrix && fault_injected("singular"))) PetscCall(add_local_contributions(s, c, rows, matrix));
+  } catch (const ConfigurationError& e) {
+    local_error = e.what();
+    configuration = true;
   } catch (const std::exception& e) {
     local_error = e.what();
   }
   if (d_a_) PetscCall(MatSeqAIJRestoreArray(diag_, &d_a_));
   if (o_a_) PetscCall(MatSeqAIJRestoreArray(offdiag_, &o_a_));
   d_a_ = o_a_ = nullptr;
-  PetscCall(raise_if_any_rank_failed(local_error));
+  PetscCall(raise_if_any_rank_failed(local_error, configuration));
   if (matrix) {
     PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
@@ -263,7 +267,7 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& local_error) {
+PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& local_error, bool configuration) {
   PetscFunctionBeginUser;
   int rank = 0, size = 1;
   MPI_Comm_rank(comm_, &rank);
@@ -276,6 +280,9 @@ PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& lo
   std::string msg = local_error;
   msg.resize(static_cast<size_t>(len));
   PetscCallMPI(MPI_Bcast(msg.data(), len, MPI_CHAR, first, comm_));
+  int kind = configuration ? 1 : 0;
+  PetscCallMPI(MPI_Bcast(&kind, 1, MPI_INT, first, comm_));
+  if (kind) throw ConfigurationError(msg);
   throw SolverError(msg);
 }
 

@@ -25,9 +25,21 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& what) const {
-    throw std::invalid_argument("in expression '" + s_ + "' at character " + std::to_string(pos_ + 1) +
-                                ": " + what);
+    // A message quotes the expression, not pages of it.
+    constexpr size_t kShown = 60;
+    const std::string shown = s_.size() <= kShown ? s_ : s_.substr(0, kShown) + "... (" + std::to_string(s_.size()) + " characters)";
+    throw std::invalid_argument("in expression '" + shown + "' at character " + std::to_string(pos_ + 1) + ": " + what);
   }
+  // Every nesting — parentheses, unary signs, powers, arguments — recurses through unary(): bounded,
+  // so that no input overflows the stack (found by tests/fuzz: 10⁵ nested parentheses).
+  static constexpr int kMaxDepth = 200;
+  struct Nesting {
+    explicit Nesting(Parser& p) : p_(p) {
+      if (++p_.depth_ > kMaxDepth) p_.fail("nested more than " + std::to_string(kMaxDepth) + " levels deep");
+    }
+    ~Nesting() { --p_.depth_; }
+    Parser& p_;
+  };
   void skip() {
     while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
   }
@@ -56,6 +68,7 @@ class Parser {
     }
   }
   double unary() {
+    const Nesting nesting(*this);
     if (accept('-')) return -unary();
     if (accept('+')) return unary();
     return power();
@@ -127,6 +140,7 @@ class Parser {
   const std::string& s_;
   const ExpressionScope& scope_;
   size_t pos_ = 0;
+  int depth_ = 0;
 };
 
 }  // namespace

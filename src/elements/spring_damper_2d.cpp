@@ -31,7 +31,7 @@ void SpringDamper2D::evaluate(const LocalState& s, LocalResidual& out, bool tang
   } else {
     len = d.norm();
     if (len < 1e-12 * std::max(1.0, l0_))
-      throw SolverError("spring_damper '" + name() +
+      throw ConfigurationError("spring_damper '" + name() +
                         "': its two points coincide, so the force has no direction; give the "
                         "spring a fixed `direction` if it acts along a rail");
     e = d / len;

@@ -68,7 +68,7 @@ MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
   if (const YAML::Node p = mn["parameters"]) {
     if (!p.IsMap()) rd.fail(p, "mesh.parameters", "expected a map name: value (DefineConstant names of the .geo)");
     for (const auto& kv : p) {
-      const std::string k = kv.first.as<std::string>();
+      const std::string k = rd.key_name(kv.first, "mesh.parameters");
       opt.parameters[k] = rd.number(kv.second, "mesh.parameters." + k);
     }
   }

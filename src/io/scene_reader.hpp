@@ -67,7 +67,7 @@ class Reader {
     if (!map.IsMap()) fail(map, path, "expected a map of keys");
     std::set<std::string> seen;
     for (const auto& kv : map) {
-      const std::string k = kv.first.as<std::string>();
+      const std::string k = key_name(kv.first, path);
       if (!allowed.count(k)) {
         std::string list;
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
@@ -76,6 +76,12 @@ class Reader {
       // yaml-cpp keeps both entries of a repeated key and reads the first: refuse it.
       if (!seen.insert(k).second) fail(kv.first, join(path, k), "given twice");
     }
+  }
+
+  /// A map's key as text. YAML allows lists and maps as keys (`? [a, b]: 1`); a scene has none.
+  std::string key_name(const YAML::Node& key, const std::string& path) const {
+    if (!key.IsScalar()) fail(key, path.empty() ? "(top level)" : path, "expected key names, found a list or a map used as a key");
+    return key.Scalar();
   }
 
   YAML::Node need(const YAML::Node& map, const std::string& key, const std::string& path) const {
@@ -90,6 +96,10 @@ class Reader {
     try {
       const double v = evaluate_expression(text, scope_);
       if (!std::isfinite(v)) fail(n, key, "'" + text + "' is not a finite number");
+      // The model multiplies values (k·L², m·v², E·I): a value whose square is not a normal double
+      // overflows or vanishes there (a mass of 1e308 made the first matrix singular: tests/fuzz).
+      if (v != 0.0 && !(std::fabs(v) >= 1e-150 && std::fabs(v) <= 1e150))
+        fail(n, key, "'" + text.substr(0, 60) + "' is out of range: expected 0 or a magnitude from 1e-150 to 1e150");
       return v;
     } catch (const std::invalid_argument& e) {
       fail(n, key, std::string("expected a number, ") + e.what());
@@ -124,6 +134,12 @@ class Reader {
   }
   std::string text(const YAML::Node& n, const std::string& key) const {
     if (!n.IsScalar()) fail(n, key, "expected a string");
+    // Names, types and file names are quoted in later messages: none longer than a path may be
+    // (PATH_MAX), so that no message repeats kilobytes of a damaged file.
+    constexpr size_t kMaxText = 4096;
+    if (n.Scalar().size() > kMaxText)
+      fail(n, key, "expected a string of at most " + std::to_string(kMaxText) + " characters, got " +
+                       std::to_string(n.Scalar().size()));
     return n.Scalar();
   }
   Eigen::Vector2d vec2(const YAML::Node& n, const std::string& key) const {
@@ -237,7 +253,7 @@ class Reader {
     if (!p) return;
     if (!p.IsMap()) fail(p, "parameters", "expected a map name: value");
     for (const auto& kv : p) {
-      const std::string name = kv.first.as<std::string>();
+      const std::string name = key_name(kv.first, "parameters");
       scope_[name] = number(kv.second, "parameters." + name);
     }
   }
@@ -313,9 +329,14 @@ class SceneBuilder {
     return id;
   }
 
+  /// The bodies a reference could name, for messages: the first 20 (a meshed model has thousands
+  /// of nodes, all of which were listed: a message of 10⁴ names, found by tests/fuzz).
   std::string known_bodies() const {
+    constexpr size_t kShown = 20;
     std::string s = " (bodies: ";
-    for (const auto& nd : model_.nodes()) s += nd.name + " ";
+    const auto& nodes = model_.nodes();
+    for (size_t i = 0; i < nodes.size() && i < kShown; ++i) s += nodes[i].name + " ";
+    if (nodes.size() > kShown) s += "... (" + std::to_string(nodes.size() - kShown) + " more) ";
     return s + "ground)";
   }
 

@@ -8,6 +8,7 @@
 // fails with "line 0: syntax error". So errors are not thrown (AbortOnError = 0): gmsh finishes
 // each operation, the logger keeps every message ("Error: ...", "Warning: ..."), and each stage
 // here checks it. Anything still thrown (std::string, std::exception, other) is converted too.
+// A .msh is checked before gmsh reads it (msh_check.hpp: gmsh crashes on bad tags and counts).
 // Silent failures checked here instead: opening a missing file does nothing; a .msh without a
 // $MeshFormat header is parsed as a .geo script; a Physical group naming a curve or point that does
 // not exist is dropped. State that survives gmsh::finalize: the ONELAB database (cleared before and
@@ -30,6 +31,7 @@
 #include <utility>
 
 #include "alphaflex/core/error.hpp"
+#include "msh_check.hpp"
 
 namespace alphaflex {
 
@@ -206,6 +208,11 @@ class Reader {
       if (word != "$MeshFormat")
         fail("not a gmsh MSH file: expected it to start with $MeshFormat" +
              (word.empty() ? std::string(" (the file is empty)") : ", found '" + word.substr(0, 40) + "'"));
+      // gmsh trusts a .msh: a bad tag or count crashes it (msh_check.hpp). Checked here first.
+      in.seekg(0);
+      const std::string text(std::istreambuf_iterator<char>(in), {});
+      const std::string bad = msh_check::structure_error(text);
+      if (!bad.empty()) fail("not a valid MSH file (checked before gmsh reads it): " + bad);
     }
 
     if (options_.elements_per_curve < 0)

@@ -34,6 +34,26 @@ TEST(Expression, ErrorsNameTheProblem) {
   }
 }
 
+// Nesting is bounded (a deep one overflowed the stack: tests/fuzz), and a message quotes a long
+// expression shortened.
+TEST(Expression, DeepNestingIsRefusedNotAStackOverflow) {
+  const ExpressionScope s;
+  const auto nested = [](size_t depth) { return std::string(depth, '(') + "1" + std::string(depth, ')'); };
+  EXPECT_DOUBLE_EQ(evaluate_expression(nested(150), s), 1.0);
+  EXPECT_DOUBLE_EQ(evaluate_expression(std::string(150, '-') + "1", s), 1.0);
+  for (const std::string& deep : {nested(50000), std::string(100000, '-') + "1"}) {
+    try {
+      evaluate_expression(deep, s);
+      ADD_FAILURE() << "a 100000-deep expression was accepted";
+    } catch (const std::invalid_argument& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("nested more than 200 levels deep"), std::string::npos) << m;
+      EXPECT_NE(m.find("... (100001 characters)"), std::string::npos) << m;
+      EXPECT_LT(m.size(), 200u) << m;
+    }
+  }
+}
+
 // f' and f'' against central differences, for every function kind.
 TEST(TimeFunction, DerivativesMatchFiniteDifferences) {
   const std::vector<TimeFunctionPtr> fs{make_constant(2.0), make_ramp(0.1, 0.5, 1.0, 3.0),

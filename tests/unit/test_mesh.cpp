@@ -395,8 +395,8 @@ TEST(MeshErrors, CorruptMsh) {
   }
   const std::string truncated = dir.write("truncated.msh", good.substr(0, good.find("$Nodes") + 20));
   std::string e = error_of([&] { read_mesh(truncated, {}, "ctx"); });
-  EXPECT_HAS(e, "ctx: mesh '" + truncated + "': gmsh failed while reading the .msh (expected a valid gmsh MSH file)");
-  EXPECT_HAS(e, "Could not read nodes");
+  EXPECT_HAS(e, "ctx: mesh '" + truncated + "': not a valid MSH file (checked before gmsh reads it): line 17: ");
+  EXPECT_HAS(e, "the file is cut short, or the count is wrong");
   // Without its header gmsh would run the file as a .geo script: refused before.
   e = error_of([&] { read_mesh(dir.write("text.msh", "hello world\n"), {}, "ctx"); });
   EXPECT_HAS(e, "not a gmsh MSH file: expected it to start with $MeshFormat, found 'hello'");
@@ -405,7 +405,39 @@ TEST(MeshErrors, CorruptMsh) {
   std::string garbled = good;
   garbled.replace(garbled.find("$Elements") + 10, 7, "x y z w");
   e = error_of([&] { read_mesh(dir.write("garbled.msh", garbled), {}, "ctx"); });
-  EXPECT_HAS(e, "gmsh failed while reading the .msh");
+  EXPECT_HAS(e, "line 33: expected the number of element blocks (an integer), found 'x'");
+}
+
+// A .msh is checked before gmsh reads it: gmsh 4.8.4 crashed (SIGSEGV in getMeshVertexByTag) on
+// an element naming a node that does not exist (tests/fuzz). Each damage gets its line and what is wrong.
+TEST(MeshErrors, MshCheckedBeforeGmsh) {
+  const TempDir dir;
+  std::string good;
+  {
+    std::ifstream in(mesh_path("cantilever_n4.msh"));
+    good.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto damaged = [&](const std::string& from, const std::string& to) {
+    std::string t = good;
+    const size_t at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return dir.write("damaged.msh", t.replace(at, from.size(), to));
+  };
+  auto expect = [&](const std::string& msh, const std::string& what) {
+    const std::string e = error_of([&] { read_mesh(msh, {}, "ctx"); });
+    EXPECT_HAS(e, "ctx: mesh '" + msh + "': not a valid MSH file (checked before gmsh reads it): line ");
+    EXPECT_HAS(e, what);
+  };
+  expect(damaged("\n3 1 3 \n", "\n3 1 9 \n"), "element 3 uses node 9, which is not in $Nodes");
+  expect(damaged("\n3\n4\n5\n", "\n3\n40\n5\n"), "node tag 40 is outside [1, 5] (the header's minNodeTag and maxNodeTag)");
+  expect(damaged("$Nodes\n3 5 1 5", "$Nodes\n3 5000000 1 5"), "the number of nodes 5000000 is more than the rest of the file can hold");
+  expect(damaged("4.1 0 8", "4.1 1 8"), "a binary MSH file: alphaflex reads ASCII MSH only");
+  expect(damaged("4.1 0 8", "3.0 0 8"), "MSH version '3.0': expected 4.1 or 2.2");
+  expect(damaged("0.4999999999986921 0 0", "nan 0 0"), "a node coordinate is 'nan': expected a finite number");
+  expect(damaged("1 1 1 4\n", "1 7 1 4\n"), "an element block of entity 7 (dimension 1), which is not in $Entities");
+  expect(damaged("$EndNodes", "$EndNodez"), "expected $EndNodes, found '$EndNodez'");
+  // The undamaged file still reads.
+  EXPECT_EQ(read_mesh(dir.write("good.msh", good), {}, "ctx").line_blocks.size(), 1u);
 }
 
 TEST(MeshErrors, NoPhysicalGroups) {

@@ -27,6 +27,10 @@ struct RunOptions {
   /// after every converged step, load steps included; the study module uses it for histories
   /// of multipliers and strain energies. Empty: not called.
   std::function<void(const MechanicalState&)> on_step;
+  /// Stop once the run is set up — partition, assembly structure, solver, and (dynamic runs) the
+  /// consistent start of q0, q̇0, q̈0 — before the first time or load step and before any output
+  /// file: everything a bad input can fail in before the run proper (the fuzz test, tests/fuzz).
+  bool stop_after_start = false;
 };
 
 struct RunSummary {

@@ -91,7 +91,7 @@ class SaddlePointSystem {
                             const Value& value);
   PetscErrorCode add_local_contributions(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
                                          bool matrix);
-  PetscErrorCode raise_if_any_rank_failed(const std::string& local_error);
+  PetscErrorCode raise_if_any_rank_failed(const std::string& local_error, bool configuration);
 
   const Subdomain& sub_;
   const Model& model_;

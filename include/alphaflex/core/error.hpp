@@ -18,6 +18,15 @@ class SolverError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// An element that cannot be evaluated in the configuration reached (a spring whose two points
+/// coincide). During a run a solver failure like any other; during the consistent start at t = 0
+/// the configuration is the scene's own (projected onto its joints), so run_simulation reports it
+/// as an InputError naming the scene file.
+class ConfigurationError : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
 /// Not an error: the run stopped on request (a stop signal) after writing a checkpoint and its
 /// results; the message says how to restart. Exit code 5.
 class Interrupted : public std::runtime_error {

@@ -1,0 +1,118 @@
+// Input errors found by the fuzz test (tests/fuzz, docs/testing.md), one test each: the input that
+// went wrong, and the message it gets now (file, line, key, what was expected).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "alphaflex/app/simulation.hpp"
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/io/scene.hpp"
+
+namespace alphaflex {
+namespace {
+
+const std::string kPendulum = R"(solver: {h: 1.0e-3, t_end: 0.01}
+bodies:
+  - {name: bar, type: rigid_body, mass: 1, inertia: 0.1, position: [0.5, 0]}
+joints:
+  - {name: pin, type: revolute, body1: bar, point1: [-0.5, 0], body2: ground, point2: [0, 0]}
+)";
+
+/// The InputError message of reading (and starting, with stop_after_start) `yaml`.
+std::string error_of(const std::string& yaml) {
+  try {
+    Scene sc = read_scene_text(yaml, "scene.yaml");
+    RunOptions o;
+    o.write_results = false;
+    o.verbose = false;
+    o.stop_after_start = true;
+    run_simulation(sc, o, MPI_COMM_SELF);
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not an InputError: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "accepted";
+  return "";
+}
+
+// YAML allows a map as a key (`? {a: b}`); yaml-cpp's conversion to a string then threw a
+// YAML::BadConversion, reported as "scene.yaml:2: bad conversion" (no key, no expectation).
+TEST(SceneErrors, MapAsKeyIsNamed) {
+  EXPECT_EQ(error_of("? {a: b}\n" + kPendulum),
+            "scene.yaml:1: (top level): expected key names, found a list or a map used as a key");
+  EXPECT_EQ(error_of("parameters:\n  ? [x]\n  : 1\n" + kPendulum),
+            "scene.yaml:2: parameters: expected key names, found a list or a map used as a key");
+}
+
+// A name is quoted in every later message about its item: a 5000-character one is refused first.
+TEST(SceneErrors, OverlongStringIsRefusedNotQuoted) {
+  const std::string long_name(5000, 'x');
+  std::string yaml = kPendulum;
+  yaml.replace(yaml.find("name: bar"), 9, "name: " + long_name);
+  EXPECT_EQ(error_of(yaml), "scene.yaml:3: bodies[0].name: expected a string of at most 4096 characters, got 5000");
+}
+
+// A mass of 1e308 (finite) made the first iteration matrix singular: a SolverError without the
+// file. Values whose square is not a normal double are refused where they are read.
+TEST(SceneErrors, ValuesBeyondTheSquarableRangeAreRefused) {
+  for (const char* v : {"1e308", "-1e151", "1e-308"}) {
+    std::string yaml = kPendulum;
+    yaml.replace(yaml.find("inertia: 0.1"), 12, std::string("inertia: ") + v);
+    EXPECT_EQ(error_of(yaml), "scene.yaml:3: bodies[bar].inertia: '" + std::string(v) +
+                                  "' is out of range: expected 0 or a magnitude from 1e-150 to 1e150");
+  }
+  std::string yaml = kPendulum;
+  yaml.replace(yaml.find("position: [0.5, 0]"), 18, "position: [0.5, 1e-150]");  // the bounds are inside
+  Scene sc = read_scene_text(yaml, "scene.yaml");
+  EXPECT_EQ(sc.model->node(0).q0[1], 1e-150);
+}
+
+// A reference to a body that does not exist lists the known ones: the first 20, not every node.
+TEST(SceneErrors, UnknownBodyListsAtMostTwentyNames) {
+  std::string yaml = "bodies:\n";
+  for (int i = 0; i < 30; ++i)
+    yaml += "  - {name: b" + std::to_string(i) + ", type: particle, mass: 1, position: [" + std::to_string(i) + ", 0]}\n";
+  yaml += "joints:\n  - {name: pin, type: revolute, body1: nobody, body2: ground}\n";
+  EXPECT_EQ(error_of(yaml), "scene.yaml:33: joints[pin].body1: no body named 'nobody' (bodies: b0 b1 b2 b3 b4 b5 b6 b7 b8 b9 "
+                            "b10 b11 b12 b13 b14 b15 b16 b17 b18 b19 ... (10 more) ground)");
+}
+
+// The consistent start moves p onto the spring's ground point: a SolverError of the spring came
+// out of the start without the scene's name; it is the scene's fault, so an InputError naming it.
+TEST(SceneErrors, SpringCollapsingAtTheStartIsAnInputError) {
+  const std::string e = error_of(R"(solver: {h: 1.0e-3, t_end: 0.01}
+bodies:
+  - {name: p, type: particle, mass: 1, position: [3, 0]}
+joints:
+  - {name: F, type: fixed_point, body: p, location: [2, 2]}
+forces:
+  - {name: s, type: spring_damper, body1: p, body2: ground, point2: [2, 2], stiffness: 10}
+)");
+  EXPECT_EQ(e.rfind("scene.yaml: the scene cannot start (consistent start at t = 0): spring_damper 's': its two points coincide", 0), 0u)
+      << e;
+}
+
+// stop_after_start sets the run up and stops before the first step, writing nothing.
+TEST(SceneErrors, StopAfterStartTakesNoStepAndWritesNothing) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::temp_directory_path() / "alphaflex_stop_after_start";
+  fs::remove_all(out);
+  Scene sc = read_scene_text(kPendulum, "pendulum.yaml");
+  RunOptions o;
+  o.outdir = out.string();
+  o.verbose = false;
+  o.stop_after_start = true;
+  int observed = 0;
+  o.on_step = [&](const MechanicalState&) { ++observed; };
+  const RunSummary s = run_simulation(sc, o, MPI_COMM_SELF);
+  EXPECT_EQ(s.steps, 0);
+  EXPECT_EQ(observed, 0);
+  EXPECT_EQ(s.unknowns, 5);  // x, y, θ and the pin's two multipliers
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace alphaflex
