@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # One-command set-up for a fresh Debian 12 machine (run as root, from the repository root):
 #   bash scripts/setup.sh run    install dependencies, build, run the default scene
-#   bash scripts/setup.sh test   install dependencies, build, run the whole test suite (ctest)
+#   bash scripts/setup.sh test   install dependencies, build, run the whole test suite (ctest), then
+#                                the sanitizer run (scripts/sanitize.sh)
 set -euo pipefail
 mode=${1:-run}
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,7 +21,9 @@ case "$mode" in
     ;;
   test)
     cmake --build build -j"$jobs"
-    cd build && ctest -j"$jobs" --output-on-failure --timeout 900
+    (cd build && ctest -j"$jobs" --output-on-failure --timeout 900)
+    # Then the unit tests and the fuzz test under AddressSanitizer + UBSan (docs/testing.md).
+    bash scripts/sanitize.sh build-asan
     ;;
   *)
     echo "usage: bash scripts/setup.sh run [SCENE.yaml] | test" >&2
