@@ -85,7 +85,9 @@ def sensors(out):
 
 reference = os.path.abspath(os.path.join(a.outdir, "uninterrupted"))
 shutil.rmtree(reference, ignore_errors=True)
+t_ref = time.time()
 run(a.ranks, reference)
+t_ref = time.time() - t_ref  # how long the whole run takes on this machine now
 restarted = os.path.abspath(os.path.join(a.outdir, "restarted"))
 shutil.rmtree(restarted, ignore_errors=True)
 
@@ -98,7 +100,11 @@ else:
     # checkpoint. One rank: SIGTERM to the process; under mpirun: SIGUSR1, which mpirun forwards.
     rng = random.Random(a.seed)
     proc = subprocess.Popen(command(a.ranks, restarted), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(rng.uniform(1.5, 3.0))
+    # A random moment within the run, scaled by how long the uninterrupted run took here (a fixed
+    # delay was too late once small systems got fast, and machines differ).
+    if t_ref < 0.5:
+        sys.exit(f"the uninterrupted run takes only {t_ref:.2f} s: give it a longer solver.t_end")
+    time.sleep(rng.uniform(0.3, 0.6) * t_ref)
     if proc.poll() is not None:
         sys.exit("the run ended before the signal: give it a longer solver.t_end")
     proc.send_signal(signal.SIGTERM if a.ranks == 1 else signal.SIGUSR1)
