@@ -37,20 +37,36 @@ LinearizedSystem::LinearizedSystem(SaddlePointSystem& system, LinearSolver& solv
   register_events();
 }
 
-ModelVector LinearizedSystem::solve(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
-                                    ModelVector* residual) {
-  double t0 = MPI_Wtime();
+void LinearizedSystem::assemble(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
+                                bool matrix, ModelVector* residual) {
+  const double t0 = MPI_Wtime();
   PetscLogEventBegin(ev_assembly, 0, 0, 0, 0);
-  check_petsc(sys_.assemble(s, c, rows, true), "assembly");
+  check_petsc(sys_.assemble(s, c, rows, matrix), "assembly");
   if (residual) check_petsc(sys_.to_model(sys_.residual(), *residual), "residual gather");
   PetscLogEventEnd(ev_assembly, 0, 0, 0, 0);
-  double t1 = MPI_Wtime();
-  times_.assembly += t1 - t0;
+  times_.assembly += MPI_Wtime() - t0;
+}
+
+ModelVector LinearizedSystem::solve_factored() {
+  const double t0 = MPI_Wtime();
+  PetscLogEventBegin(ev_solve, 0, 0, 0, 0);
+  check_petsc(solver_.solve(sys_.residual(), sys_.solution()), "solve");
+  PetscLogEventEnd(ev_solve, 0, 0, 0, 0);
+  if (!solver_.failure().empty()) throw SolverError(solver_.failure());
+  ModelVector x;
+  check_petsc(sys_.to_model(sys_.solution(), x), "solution gather");
+  times_.solve += MPI_Wtime() - t0;
+  return x;
+}
+
+ModelVector LinearizedSystem::solve(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
+                                    ModelVector* residual) {
+  assemble(s, c, rows, true, residual);
+  const double t1 = MPI_Wtime();
   PetscLogEventBegin(ev_factor, 0, 0, 0, 0);
   check_petsc(solver_.factor(sys_.matrix()), "factorization");
   PetscLogEventEnd(ev_factor, 0, 0, 0, 0);
-  double t2 = MPI_Wtime();
-  times_.factorization += t2 - t1;
+  times_.factorization += MPI_Wtime() - t1;
   if (!solver_.failure().empty()) {
     // Name the cause (redundant joints, coordinates nothing acts on) instead of a MUMPS code; at
     // the start it is the model as given, i.e. bad input.
@@ -62,34 +78,14 @@ ModelVector LinearizedSystem::solve(const MechanicalState& s, const AssemblyCoef
     if (!why.empty()) os << "\n  " << why;
     throw SolverError(os.str());
   }
-  PetscLogEventBegin(ev_solve, 0, 0, 0, 0);
-  check_petsc(solver_.solve(sys_.residual(), sys_.solution()), "solve");
-  PetscLogEventEnd(ev_solve, 0, 0, 0, 0);
-  if (!solver_.failure().empty()) throw SolverError(solver_.failure());
-  ModelVector x;
-  check_petsc(sys_.to_model(sys_.solution(), x), "solution gather");
-  times_.solve += MPI_Wtime() - t2;
-  return x;
+  return solve_factored();
 }
 
 ModelVector LinearizedSystem::solve_with_last_factorization(const MechanicalState& s, const AssemblyCoefficients& c,
                                                            ConstraintRows rows, ModelVector* residual) {
-  double t0 = MPI_Wtime();
-  PetscLogEventBegin(ev_assembly, 0, 0, 0, 0);
   // S is left as it was factored: PETSc sees no change of its state and does not refactor.
-  check_petsc(sys_.assemble(s, c, rows, false), "assembly");
-  if (residual) check_petsc(sys_.to_model(sys_.residual(), *residual), "residual gather");
-  PetscLogEventEnd(ev_assembly, 0, 0, 0, 0);
-  double t1 = MPI_Wtime();
-  times_.assembly += t1 - t0;
-  PetscLogEventBegin(ev_solve, 0, 0, 0, 0);
-  check_petsc(solver_.solve(sys_.residual(), sys_.solution()), "solve");
-  PetscLogEventEnd(ev_solve, 0, 0, 0, 0);
-  if (!solver_.failure().empty()) throw SolverError(solver_.failure());
-  ModelVector x;
-  check_petsc(sys_.to_model(sys_.solution(), x), "solution gather");
-  times_.solve += MPI_Wtime() - t1;
-  return x;
+  assemble(s, c, rows, false, residual);
+  return solve_factored();
 }
 
 std::string LinearizedSystem::describe_largest(const ModelVector& r) const {

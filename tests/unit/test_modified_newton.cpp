@@ -63,19 +63,12 @@ TEST(ModifiedNewton, DiffersFromFullNewtonOnlyByTheNewtonTolerance) {
 // Newton, against the independent reference tests/reference/quick_return.csv as in
 // test_example_mechanisms.cpp: errors at t = 1 s in φ and the two reactions fall like h².
 TEST(ModifiedNewton, QuickReturnSecondOrderAgainstReference) {
-  const auto ref = read_csv(source_path("tests/reference/quick_return.csv"));
   const std::vector<std::string> names{"phi", "slot_fx", "O_fx"};
-  const std::vector<double> hs{2e-3, 1e-3, 5e-4, 2.5e-4};
-  std::vector<std::vector<double>> err(names.size());
-  for (double h : hs) {
-    const RunSummary r = run_scene("quick_return", with(kModified, {"solver.h=" + std::to_string(h)}));
-    for (size_t k = 0; k < names.size(); ++k)
-      err[k].push_back(std::fabs(r.final_sensors[column(r, names[k])] - at_time(ref, names[k], 1.0)));
-  }
+  const std::vector<double> p = error_slopes("quick_return", "tests/reference/quick_return.csv", names,
+                                             {2e-3, 1e-3, 5e-4, 2.5e-4}, 1.0, kModified);
   for (size_t k = 0; k < names.size(); ++k) {
-    const double p = fitted_slope(hs, err[k]);
-    EXPECT_GE(p, 1.8) << names[k];
-    EXPECT_LE(p, 2.2) << names[k];
+    EXPECT_GE(p[k], 1.8) << names[k];
+    EXPECT_LE(p[k], 2.2) << names[k];
   }
 }
 

@@ -81,6 +81,26 @@ inline double fitted_slope(const std::vector<double>& h, const std::vector<doubl
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+/// Least-squares slopes, one per sensor in `names`, of the final-time errors of runs of `scene` at
+/// the step sizes `hs` against column `names[k]` of the reference CSV at time t (`extra`: more
+/// --set overrides for every run).
+inline std::vector<double> error_slopes(const std::string& scene, const std::string& reference_csv,
+                                        const std::vector<std::string>& names, const std::vector<double>& hs, double t,
+                                        const std::vector<std::string>& extra = {}) {
+  const auto ref = read_csv(source_path(reference_csv));
+  std::vector<std::vector<double>> err(names.size());
+  for (double h : hs) {
+    std::vector<std::string> overrides = extra;
+    overrides.push_back("solver.h=" + std::to_string(h));
+    const RunSummary r = run_scene(scene, overrides);
+    for (size_t k = 0; k < names.size(); ++k)
+      err[k].push_back(std::fabs(r.final_sensors[column(r, names[k])] - at_time(ref, names[k], t)));
+  }
+  std::vector<double> slopes;
+  for (const auto& e : err) slopes.push_back(fitted_slope(hs, e));
+  return slopes;
+}
+
 /// Differences between two final states of spatial scenes (7 numbers per frame): the largest
 /// position difference (m) and relative rotation angle (rad) over the frames, on the group, and
 /// the largest velocity and multiplier differences.

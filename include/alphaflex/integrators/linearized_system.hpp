@@ -75,6 +75,12 @@ class LinearizedSystem {
   bool initializing = false;  ///< a singular matrix is then bad input (the model as given)
 
  private:
+  /// r (and S if `matrix`) at `s`, timed as assembly; r in model order if asked.
+  void assemble(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows, bool matrix,
+                ModelVector* residual);
+  /// x = S⁻¹ r with the factors in place, in model order, timed as solve.
+  ModelVector solve_factored();
+
   SaddlePointSystem& sys_;
   LinearSolver& solver_;
   PhaseTimes times_;
