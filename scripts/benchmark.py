@@ -2,7 +2,7 @@
 """Performance benchmarks of alphaflex, written to docs/performance.md with charts in docs/figures/
 and every measured row appended to docs/benchmarks/performance.csv (the regression record).
 
-    /usr/bin/python3 scripts/benchmark.py [--exe build/alphaflex] [--cases andrews,small,beam,gridshell,large]
+    /usr/bin/python3 scripts/benchmark.py [--exe build/alphaflex] [--no-build] [--cases andrews,small,beam,gridshell,large]
                                           [--sizes 8,16,32,48,64] [--ranks 1,2] [--baseline OTHER_EXE] [--quick]
 
 Cases (each a section of the page; the targets are those of the issue "speed on one rank"):
@@ -19,7 +19,8 @@ Cases (each a section of the page; the targets are those of the issue "speed on 
              solve, memory per unknown, strong scaling; modified Newton on one rank.
   large      gridshell at n = 144 (~1e6 unknowns), 2 ranks, one step: does it fit in memory.
 
-Every per-step figure is the difference of two runs of 2 and 2 + S steps, so start-up (mesh,
+It first builds build/alphaflex in Release (unless --no-build or another --exe). Every per-step
+figure is the difference of two runs of 2 and 2 + S steps, so start-up (mesh,
 partition, preallocation, consistent start) is not in it. With --baseline, the gridshell and
 beam cases also run with another executable, alternating with this one, so a change can be set
 side by side in one run. Times are wall-clock on a shared 2-core machine: read the ratios.
@@ -519,7 +520,17 @@ def main():
     ap.add_argument("--large-n", type=int, default=144)
     ap.add_argument("--quick", action="store_true", help="small sizes, few steps (a check of the script)")
     ap.add_argument("--outdir", default=os.path.join(ROOT, "docs"))
+    ap.add_argument("--no-build", action="store_true",
+                    help="do not (re)build the Release executable in build/ first (default: build it when --exe is the default)")
     a = ap.parse_args()
+    if not a.no_build and os.path.abspath(a.exe) == os.path.join(ROOT, "build", "alphaflex"):
+        # The figures are of a Release build: configure and build it (incremental when it exists).
+        for cmd in (["cmake", "-S", ROOT, "-B", os.path.join(ROOT, "build"), "-DCMAKE_BUILD_TYPE=Release"],
+                    ["cmake", "--build", os.path.join(ROOT, "build"), "-j", str(os.cpu_count() or 2), "--target",
+                     "alphaflex_exe"]):
+            p = subprocess.run(cmd, capture_output=True, text=True)
+            if p.returncode != 0:
+                sys.exit(f"{' '.join(cmd)} failed:\n{p.stdout}\n{p.stderr}")
     cases = a.cases.split(",")
     sizes = [8, 16] if a.quick else [int(s) for s in a.sizes.split(",")]
     modified_sizes = [16] if a.quick else [int(s) for s in a.modified_sizes.split(",")]
