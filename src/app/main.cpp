@@ -110,23 +110,32 @@ CommandLine parse(int argc, char** argv) {
   return cl;
 }
 
-// `alphaflex run`: read the scene on every rank (agreeing on its validity), run it, print the summary.
-void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, double exit_timeout, std::string& message) {
-  // Every rank reads the scene; they must agree that it is valid before anything collective.
-  alphaflex::Scene scene;
+/// What `read` returns (a scene, a study), read on every rank; the ranks agree that it is valid
+/// before anything collective (an InputError on one rank is thrown on all, with its message).
+template <class Read>
+auto read_on_every_rank(const std::string& file, Read read, std::string& message) -> decltype(read()) {
+  decltype(read()) out;
   int ok = 1;
-  // The scene's whole model is built on every rank (docs/architecture.md): its memory is the
-  // replicated part of a parallel run, reported with the summary.
-  const double before_mb = resident_mb();
   try {
-    scene = alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD);
+    out = read();
   } catch (const alphaflex::InputError& e) {
     ok = 0;
     message = e.what();
   }
   int all_ok = 1;
   MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-  if (!all_ok) throw alphaflex::InputError(message.empty() ? cl.scene + ": unreadable on another rank" : message);
+  if (!all_ok) throw alphaflex::InputError(message.empty() ? file + ": unreadable on another rank" : message);
+  return out;
+}
+
+// `alphaflex run`: read the scene on every rank (agreeing on its validity), run it, print the summary.
+void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, double exit_timeout, std::string& message) {
+  // Every rank reads the scene; they must agree that it is valid before anything collective.
+  // The scene's whole model is built on every rank (docs/architecture.md): its memory is the
+  // replicated part of a parallel run, reported with the summary.
+  const double before_mb = resident_mb();
+  alphaflex::Scene scene = read_on_every_rank(
+      cl.scene, [&] { return alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD); }, message);
 
   if (rank == 0) {
     const auto& p = scene.settings.parameters;
@@ -155,17 +164,8 @@ void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, 
 // `alphaflex study` (docs/study.md): every rank reads the study and agrees it is valid (as for a
 // scene), then all run it together; rank 0 writes the files.
 void study_command(const CommandLine& cl, int rank, std::string& message) {
-  alphaflex::study::StudySpec spec;
-  int ok = 1;
-  try {
-    spec = alphaflex::study::read_study(cl.scene, cl.study_file, cl.study_overrides);
-  } catch (const alphaflex::InputError& e) {
-    ok = 0;
-    message = e.what();
-  }
-  int all_ok = 1;
-  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-  if (!all_ok) throw alphaflex::InputError(message.empty() ? cl.scene + ": unreadable on another rank" : message);
+  alphaflex::study::StudySpec spec = read_on_every_rank(
+      cl.scene, [&] { return alphaflex::study::read_study(cl.scene, cl.study_file, cl.study_overrides); }, message);
   alphaflex::study::StudyOptions sopt;
   sopt.outdir = cl.outdir;
   sopt.scene_overrides = cl.overrides;

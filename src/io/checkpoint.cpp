@@ -12,6 +12,7 @@
 
 namespace alphaflex {
 
+using io_detail::agree;
 using io_detail::Rows;
 
 namespace {
@@ -46,14 +47,6 @@ struct Fingerprint {
   }
 };
 
-/// The same outcome on every rank (the first failing rank's message).
-void agree(const Subdomain& sub, const std::string& local_error) {
-  const int mine = local_error.empty() ? sub.size() : sub.rank();
-  int first = mine;
-  if (sub.size() > 1) MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, sub.comm());
-  if (first == sub.size()) return;
-  throw InputError(sub.broadcast(local_error, first));
-}
 
 std::string numbered(const std::string& path, int k) {
   // NAME.checkpoint.h5 → NAME.checkpoint.K.h5

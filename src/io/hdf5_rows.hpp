@@ -10,7 +10,16 @@
 
 #include "alphaflex/partition/subdomain.hpp"
 
+#include "alphaflex/core/error.hpp"
+
 namespace alphaflex::io_detail {
+
+/// The same outcome of a file operation on every rank: an InputError with the first failing
+/// rank's message, so that no rank goes on into a collective call alone.
+inline void agree(const Subdomain& sub, const std::string& local_error) {
+  const std::string error = sub.first_error(local_error);
+  if (!error.empty()) throw InputError(error);
+}
 
 /// Rows of a dataset that this rank writes: intervals [start, start + count) of its first
 /// dimension (sorted, disjoint), out of `total` rows.

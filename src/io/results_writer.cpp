@@ -15,6 +15,7 @@
 
 namespace alphaflex {
 
+using io_detail::agree;
 using io_detail::Rows;
 
 namespace {
@@ -45,15 +46,6 @@ std::vector<std::vector<double>> element_fields(const Model& model, const std::v
   return fields;
 }
 
-/// The same result on every rank: failed anywhere means failed everywhere, with the first failing
-/// rank's message, so that no rank goes on into a collective call alone.
-void agree(const Subdomain& sub, const std::string& local_error) {
-  const int mine = local_error.empty() ? sub.size() : sub.rank();
-  int first = mine;
-  if (sub.size() > 1) MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, sub.comm());
-  if (first == sub.size()) return;
-  throw InputError(sub.broadcast(local_error, first));
-}
 
 /// rank 0's decision on every rank.
 bool root_decides(const Subdomain& sub, bool decision) {
@@ -394,14 +386,7 @@ void ResultsWriter::commit() {
   open_times_.clear();
   open_groups_.clear();
   ++parts_;
-  if (root_ && err.empty()) {
-    try {
-      write_links();
-      write_xdmf();
-    } catch (const std::exception& e) {
-      err = e.what();
-    }
-  }
+  if (err.empty()) err = write_index();
   agree(sub_, err);
   last_commit_cost_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
@@ -521,15 +506,19 @@ void ResultsWriter::resume_from(const ResultsPosition& at) {
   }
   // In a fresh directory the HDF5 results start at the restart: steps and parts numbered from 0.
   parts_ = fresh ? 0 : at.parts;
-  if (root_) {
-    try {
-      write_links();
-      write_xdmf();
-    } catch (const std::exception& e) {
-      err = e.what();
-    }
-  }
+  err = write_index();
   agree(sub_, err);
+}
+
+std::string ResultsWriter::write_index() {
+  if (!root_) return {};
+  try {
+    write_links();
+    write_xdmf();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
 }
 
 void ResultsWriter::write_xdmf() const {

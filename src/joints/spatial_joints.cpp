@@ -137,6 +137,7 @@ struct JointVector {
   };
   std::array<Rotating, 2> parts{};
   int nparts = 0;
+  bool varies = false;  // d1 ≠ 0 (false: a fixed world vector, on the ground)
 };
 
 /// R_f w: axis `k` of marker m (a fixed world vector on the ground).
@@ -152,6 +153,7 @@ JointVector marker_axis(const SpatialMarker& m, int k, const Pose<double>* frame
   u.d1.block<3, 3>(0, 6 * m.slot + 3) = -R * hat<double>(w);
   u.parts[0] = {m.slot, w, 1.0};
   u.nparts = 1;
+  u.varies = true;
   return u;
 }
 
@@ -168,6 +170,7 @@ JointVector marker_point(const SpatialMarker& m, const Pose<double>* frames) {
   u.d1.block<3, 3>(0, 6 * m.slot + 3) = -f.R * hat<double>(m.position);
   u.parts[0] = {m.slot, m.position, 1.0};
   u.nparts = 1;
+  u.varies = true;
   return u;
 }
 
@@ -175,6 +178,7 @@ JointVector difference(const JointVector& b, const JointVector& a) {
   JointVector d;
   d.value = b.value - a.value;
   d.d1 = b.d1 - a.d1;
+  d.varies = a.varies || b.varies;
   for (int i = 0; i < b.nparts; ++i) d.parts[static_cast<size_t>(d.nparts++)] = b.parts[static_cast<size_t>(i)];
   for (int i = 0; i < a.nparts; ++i) {
     JointVector::Rotating r = a.parts[static_cast<size_t>(i)];
@@ -194,8 +198,10 @@ JointVector world_axis(int i) {
 void add_dot_second(double c, const JointVector& u, const JointVector& v, const Pose<double>* frames, int n,
                     Eigen::MatrixXd& H) {
   if (c == 0.0) return;
-  const auto U = u.d1.leftCols(n), V = v.d1.leftCols(n);
-  H.noalias() += c * (U.transpose() * V + V.transpose() * U);
+  if (u.varies && v.varies) {  // (with a fixed vector, u_i·v_j + u_j·v_i = 0)
+    const auto U = u.d1.leftCols(n), V = v.d1.leftCols(n);
+    H.noalias() += c * (U.transpose() * V + V.transpose() * U);
+  }
   auto rotating = [&](const JointVector& a, const JointVector& other) {
     for (int i = 0; i < a.nparts; ++i) {
       const JointVector::Rotating& r = a.parts[static_cast<size_t>(i)];

@@ -143,6 +143,13 @@ int Subdomain::rank_of_max(double local) const {
   return all.rank;
 }
 
+std::string Subdomain::first_error(const std::string& local_error) const {
+  const int mine = local_error.empty() ? size() : rank();
+  int first = mine;
+  if (size() > 1) MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm_);
+  return first == size() ? std::string() : broadcast(local_error, first);
+}
+
 std::string Subdomain::broadcast(const std::string& text, int root) const {
   if (size() == 1) return text;
   int len = static_cast<int>(text.size());

@@ -79,6 +79,8 @@ class ResultsWriter {
   void write_topology(long long file);
   void write_xdmf() const;
   void write_links();
+  /// Rank 0: NAME.h5's links to the parts and the XDMF index, rewritten; the error, if any (no throw).
+  std::string write_index();
   void resume_from(const ResultsPosition& at);
 
   const Subdomain& sub_;

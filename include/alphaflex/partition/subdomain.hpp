@@ -75,6 +75,10 @@ class Subdomain {
   int rank_of_max(double local) const;
   /// `text` from rank `root` on every rank.
   std::string broadcast(const std::string& text, int root) const;
+  /// The message of the lowest rank whose `local_error` is not empty, on every rank; empty if no
+  /// rank failed (collective: so that failed anywhere means failed everywhere, and no rank goes on
+  /// into a collective call alone).
+  std::string first_error(const std::string& local_error) const;
 
   /// The whole state in model order, on every rank (O(model) per rank: for diagnostics, messages
   /// and the final state of a run, not for the step loop).
