@@ -5,7 +5,7 @@ set -euo pipefail
 PKGS=(build-essential cmake pkg-config git
       petsc-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev
       libgmsh-dev gmsh libeigen3-dev libyaml-cpp-dev libgtest-dev libsundials-dev
-      python3-matplotlib python3-numpy python3-h5py python3-scipy paraview python3-paraview)
+      slepc-dev python3-matplotlib python3-numpy python3-h5py python3-scipy paraview python3-paraview xvfb)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
