@@ -296,7 +296,7 @@ Eigen::VectorXd fd_second_along(const Constraint& j, const Eigen::VectorXd& q, c
 // =================================================================== SpatialJoint: counts
 
 TEST(SpatialJoint, EquationCountsAreThoseOfTheHeaderTablePlusOnePerDriver) {
-  // 6 − the degrees of freedom each joint leaves (spatial_joints.hpp).
+  // 6 − the degrees of freedom each joint leaves (the motions of EachJointAllowsExactly… below).
   const std::vector<std::pair<std::string, int>> table = {
       {"spherical", 3}, {"universal", 4}, {"revolute", 5},      {"cylindrical", 4},   {"prismatic", 5},
       {"planar", 3},    {"fixed", 6},     {"point_on_line", 2}, {"point_on_plane", 1}};
