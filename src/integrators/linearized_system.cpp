@@ -119,7 +119,7 @@ std::string LinearizedSystem::describe_largest(const ModelVector& r) const {
       const int first = m.first_multiplier(static_cast<int>(c));
       if (j >= first && j < first + m.constraints()[c]->size())
         os << "; largest constraint violation " << r.multipliers[j] << " in joint '" << m.constraints()[c]->name()
-           << "' (" << m.constraints()[c]->type() << ", equation " << (j - first + 1) << ")";
+           << "' (" << m.constraints()[c]->type() << ", " << m.constraints()[c]->equation_label(static_cast<int>(j - first)) << ")";
     }
   return text + sub.broadcast(os.str(), root);
 }

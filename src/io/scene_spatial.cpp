@@ -157,32 +157,22 @@ void read_spatial_bodies(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
 void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
   if (!list) return;
   if (!list.IsSequence()) rd.fail(list, "joints", "expected a list of joints");
-  static const std::map<std::string, SpatialJointType> types{
-      {"spherical", SpatialJointType::Spherical}, {"universal", SpatialJointType::Universal},
-      {"revolute", SpatialJointType::Revolute},   {"cylindrical", SpatialJointType::Cylindrical},
-      {"prismatic", SpatialJointType::Prismatic}, {"planar", SpatialJointType::Planar},
-      {"fixed", SpatialJointType::Fixed},         {"point_on_line", SpatialJointType::PointOnLine},
-      {"point_on_plane", SpatialJointType::PointOnPlane}};
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node j = list[i];
     std::string path;
     const std::string name = rd.item_name(j, "joints", i, "expected a map with name, type, ...", path);
     if (model.find_constraint(name) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + name + "' exists already");
     const std::string tname = rd.text(rd.need(j, "type", path), path + ".type");
-    const auto it = types.find(tname);
-    if (it == types.end())
-      rd.fail(j["type"], path + ".type",
-              "unknown joint type '" + tname + "' (expected spherical, universal, revolute, cylindrical, prismatic, planar, fixed, point_on_line, point_on_plane)");
-    const SpatialJointType type = it->second;
+    // The joint types and the keys and drivers each takes: the table of joints/spatial_joints.cpp.
+    const SpatialJointKind* kind = find_spatial_joint_kind(tname);
+    if (!kind)
+      rd.fail(j["type"], path + ".type", "unknown joint type '" + tname + "' (expected " + spatial_joint_kind_names() + ")");
     std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2", "group", "group2"};
-    const bool has_axis = type != SpatialJointType::Spherical && type != SpatialJointType::Fixed;
+    const bool has_axis = kind->needs_axis;
     if (has_axis) allowed.insert("axis");
-    if (type == SpatialJointType::Universal) allowed.insert("axis2");
-    if (type == SpatialJointType::Revolute || type == SpatialJointType::Cylindrical || type == SpatialJointType::Prismatic ||
-        type == SpatialJointType::Fixed)
-      allowed.insert("reference");
-    if (type == SpatialJointType::Revolute || type == SpatialJointType::Cylindrical || type == SpatialJointType::Prismatic)
-      allowed.insert("driver");
+    if (kind->needs_axis2) allowed.insert("axis2");
+    if (kind->takes_reference) allowed.insert("reference");
+    if (kind->angle_driver || kind->displacement_driver) allowed.insert("driver");
     rd.keys(j, path, allowed);
     // A marker (a named frame of a body) stands for the body, the location and the joint frame.
     auto marker_of = [&](const char* key) -> const NamedMarker* {
@@ -237,7 +227,7 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       Eigen::Matrix3d R = mk1 ? Eigen::Matrix3d(p1.R * mk1->rotation) : p1.R;
       if (mk1 && has_axis && !j["axis"]) {
         R = p1.R * mk1->rotation;
-      } else if (type == SpatialJointType::Universal) {
+      } else if (kind->needs_axis2) {
         const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
         const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
         if (std::fabs(a1.dot(a2)) > 1e-9)
@@ -262,13 +252,14 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       if (const YAML::Node d = j["driver"]) {
         rd.keys(d, path + ".driver", {"angle", "displacement"});
         if (d["angle"]) {
-          if (type == SpatialJointType::Prismatic)
-            rd.fail(d["angle"], path + ".driver.angle", "a prismatic joint has no rotation to drive (use displacement)");
+          if (!kind->angle_driver)
+            rd.fail(d["angle"], path + ".driver.angle", "a " + kind->name + " joint has no rotation to drive (use displacement)");
           angle = rd.function(d["angle"], path + ".driver.angle");
         }
         if (d["displacement"]) {
-          if (type == SpatialJointType::Revolute)
-            rd.fail(d["displacement"], path + ".driver.displacement", "a revolute joint has no translation to drive (use angle)");
+          if (!kind->displacement_driver)
+            rd.fail(d["displacement"], path + ".driver.displacement",
+                    "a " + kind->name + " joint has no translation to drive (use angle)");
           displacement = rd.function(d["displacement"], path + ".driver.displacement");
         }
       }
@@ -284,7 +275,7 @@ void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, M
       const SpatialMarker A = marker_at(model, b1, 0, loc, R);
       const SpatialMarker B = marker_at(model, b2, 1, loc, R);
       try {
-        model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, type, A, B, angle, displacement));
+        model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, *kind, A, B, angle, displacement));
       } catch (const std::invalid_argument& e) {
         rd.fail(j, path, e.what());
       }
