@@ -1,0 +1,543 @@
+#include "alphaflex/modal/modal_analysis.hpp"
+
+#include <slepceps.h>
+#include <slepcpep.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <map>
+#include <sstream>
+
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/integrators/linearized_system.hpp"
+
+namespace alphaflex {
+
+const char* to_string(ModeKind kind) {
+  switch (kind) {
+    case ModeKind::Elastic: return "elastic";
+    case ModeKind::RigidBody: return "rigid-body";
+    case ModeKind::Overdamped: return "overdamped";
+    case ModeKind::Unstable: return "unstable";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+/// |ω²| below this fraction of max K_ii / max M_ii is a zero frequency: the round-off of a
+/// rigid-body eigenvalue is ~ε·‖K‖/‖M‖ times the conditioning of the pencil, while the lowest
+/// bending mode of a slender beam on 16 elements is ≥ 10⁻⁸ of the same scale.
+constexpr double kZeroRelative = 1e-10;
+
+/// The matrices of the linearization, owned here (copies of the assembly's matrix).
+struct Pencil {
+  Mat K = nullptr, C = nullptr, M = nullptr;  ///< [K Φ_qᵀ; Φ_q 0], [C 0; 0 0], [M 0; 0 0]
+  ~Pencil() {
+    MatDestroy(&K);
+    MatDestroy(&C);
+    MatDestroy(&M);
+  }
+};
+
+/// S at coefficients c (dynamic rows: [c_M M + c_C C + c_K (K + K_Φ), Φ_qᵀ; Φ_q, 0]) copied.
+void assemble_copy(SaddlePointSystem& system, const MechanicalState& s, double load_factor, double mass, double damping,
+                   double stiffness, Mat* out) {
+  AssemblyCoefficients c;
+  c.mass = mass;
+  c.damping = damping;
+  c.stiffness = stiffness;
+  c.load_factor = load_factor;
+  check_petsc(system.assemble(s, c, ConstraintRows::Dynamic, true), "modal assembly");
+  check_petsc(MatDuplicate(system.matrix(), MAT_COPY_VALUES, out), "modal matrix copy");
+}
+
+/// K, C, M of the pencil. C and M come as S(c) − S(0): the Φ_q blocks cancel exactly (the same
+/// numbers), the dynamic block is C or M exactly (x − 0 = x), with no round-off of K mixed in.
+void build_pencil(SaddlePointSystem& system, const MechanicalState& s, double load_factor, Pencil& p) {
+  Mat zero = nullptr;
+  assemble_copy(system, s, load_factor, 0.0, 0.0, 0.0, &zero);
+  assemble_copy(system, s, load_factor, 0.0, 0.0, 1.0, &p.K);
+  assemble_copy(system, s, load_factor, 1.0, 0.0, 0.0, &p.M);
+  assemble_copy(system, s, load_factor, 0.0, 1.0, 0.0, &p.C);
+  check_petsc(MatAXPY(p.M, -1.0, zero, SAME_NONZERO_PATTERN), "M = S(M) - S(0)");
+  check_petsc(MatAXPY(p.C, -1.0, zero, SAME_NONZERO_PATTERN), "C = S(C) - S(0)");
+  MatDestroy(&zero);
+}
+
+double global_max(double v, MPI_Comm comm) {
+  double g = 0.0;
+  MPI_Allreduce(&v, &g, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return g;
+}
+
+/// Number of leading coordinates of a node that are translations (m); the others are rotations.
+int translations(const Node& n) {
+  switch (n.kind) {
+    case NodeKind::Frame3D: return 3;
+    case NodeKind::RigidBody2D: return 2;
+    default: return n.ndof;
+  }
+}
+
+/// Local node of each local coordinate and its index in the node.
+struct DofOwner {
+  std::vector<int> node, index;
+};
+DofOwner dof_owners(const Model& m) {
+  DofOwner o;
+  o.node.resize(static_cast<size_t>(m.num_dofs()));
+  o.index.resize(o.node.size());
+  for (int n = 0; n < static_cast<int>(m.nodes().size()); ++n)
+    for (int k = 0; k < m.node(n).ndof; ++k) {
+      o.node[static_cast<size_t>(m.node(n).first_dof + k)] = n;
+      o.index[static_cast<size_t>(m.node(n).first_dof + k)] = k;
+    }
+  return o;
+}
+
+/// Diagonals of K and M on the owned coordinates; refuses coordinates whose rows of K, M and Φ_qᵀ
+/// are all zero (massless, no stiffness, no joint: the pencil is singular at every shift).
+double check_and_scale(SaddlePointSystem& system, const Pencil& p) {
+  const Subdomain& sub = system.subdomain();
+  const Model& m = system.model();
+  Vec vk = nullptr, vm = nullptr, dk = nullptr, dm = nullptr;
+  check_petsc(MatCreateVecs(p.K, &vk, nullptr), "vectors");
+  check_petsc(VecDuplicate(vk, &vm), "vectors");
+  check_petsc(VecDuplicate(vk, &dk), "vectors");
+  check_petsc(VecDuplicate(vk, &dm), "vectors");
+  check_petsc(MatGetRowMaxAbs(p.K, vk, nullptr), "row max");
+  check_petsc(MatGetRowMaxAbs(p.M, vm, nullptr), "row max");
+  check_petsc(MatGetDiagonal(p.K, dk), "diagonal");
+  check_petsc(MatGetDiagonal(p.M, dm), "diagonal");
+  ModelVector rk, rm, ek, em;
+  check_petsc(system.to_model(vk, rk), "gather");
+  check_petsc(system.to_model(vm, rm), "gather");
+  check_petsc(system.to_model(dk, ek), "gather");
+  check_petsc(system.to_model(dm, em), "gather");
+  VecDestroy(&vk);
+  VecDestroy(&vm);
+  VecDestroy(&dk);
+  VecDestroy(&dm);
+  const DofOwner owner = dof_owners(m);
+  std::string bad;
+  int nbad = 0;
+  double kmax = 0.0, mmax = 0.0;
+  for (int i = 0; i < sub.num_owned_dofs(); ++i) {
+    if (rk.dofs[i] == 0.0 && rm.dofs[i] == 0.0) {
+      if (nbad++ < 5) {
+        const Node& n = m.node(owner.node[static_cast<size_t>(i)]);
+        bad += std::string(bad.empty() ? "" : ", ") + n.name + "." + coordinate_name(n.kind, owner.index[static_cast<size_t>(i)]);
+      }
+    }
+    kmax = std::max(kmax, std::fabs(ek.dofs[i]));
+    mmax = std::max(mmax, em.dofs[i]);
+  }
+  // The ranks agree on the error before anyone throws (a collective call follows otherwise).
+  int total = 0;
+  MPI_Allreduce(&nbad, &total, 1, MPI_INT, MPI_SUM, sub.comm());
+  if (total > 0) {
+    // Rank order: the first rank with a bad coordinate names them.
+    int rank = 0, first = 0;
+    MPI_Comm_rank(sub.comm(), &rank);
+    int mine = nbad > 0 ? rank : 1 << 30;
+    MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, sub.comm());
+    const std::string names = [&] {
+      unsigned long long len = bad.size();
+      MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, first, sub.comm());
+      std::string out = bad;
+      out.resize(static_cast<size_t>(len));
+      MPI_Bcast(out.data(), static_cast<int>(len), MPI_CHAR, first, sub.comm());
+      return out;
+    }();
+    throw InputError("modes: " + std::to_string(total) + " coordinate(s) have neither mass nor stiffness nor a joint (" +
+                     names + (total > 5 ? ", ..." : "") +
+                     "): their frequency is undefined. Give them a mass or inertia, a spring, or a joint");
+  }
+  // max K_ii / max M_ii, not max (K_ii / M_ii): a tiny rotary inertia (slender beams) makes the
+  // latter the top of the spectrum by many decades, and "zero" would swallow the lowest modes.
+  kmax = global_max(kmax, sub.comm());
+  mmax = global_max(mmax, sub.comm());
+  return mmax > 0.0 ? kmax / mmax : 0.0;
+}
+
+/// Part of each element of the global model (its name up to '['), and the joints by name.
+struct Parts {
+  std::vector<std::string> names;
+  std::vector<int> of_element, of_constraint;  // global element / constraint → part
+};
+Parts model_parts(const Model& global) {
+  Parts p;
+  std::map<std::string, int> index;
+  auto part = [&](const std::string& full) {
+    const std::string n = full.substr(0, full.find('['));
+    auto it = index.find(n);
+    if (it != index.end()) return it->second;
+    p.names.push_back(n);
+    return index[n] = static_cast<int>(p.names.size()) - 1;
+  };
+  for (const auto& e : global.elements()) p.of_element.push_back(part(e->name()));
+  for (const auto& c : global.constraints()) p.of_constraint.push_back(part(c->name()));
+  return p;
+}
+
+/// Kinetic (x̄ᵀMx) and potential (x̄ᵀ(K + K_Φ)x, symmetric part) energy of a (complex) shape per
+/// part, over the whole model (elements and joints owned by this rank, then a sum over ranks).
+void energies(const Subdomain& sub, const Parts& parts, const MechanicalState& s, double load_factor,
+              const Eigen::VectorXd& xr, const Eigen::VectorXd& xi, std::vector<double>& kin, std::vector<double>& pot) {
+  const Model& m = sub.model();
+  const size_t np = parts.names.size();
+  std::vector<double> local(2 * np, 0.0);
+  LocalState ls;
+  LocalResidual lr;
+  auto quad = [](const Eigen::MatrixXd& A, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return a.dot(A * a) + b.dot(A * b);
+  };
+  for (size_t e = 0; e < m.elements().size(); ++e) {
+    const Element& el = *m.elements()[e];
+    const std::vector<int> dofs = m.dofs_of(el.nodes()), confs = m.confs_of(el.nodes());
+    ls.q = gather(s.q, confs);
+    ls.v = gather(s.v, dofs);
+    ls.qdd = gather(s.qdd, dofs);
+    ls.t = s.t;
+    ls.load_factor = load_factor;
+    lr.reset(static_cast<int>(dofs.size()), true);
+    el.evaluate(ls, lr, true);
+    const Eigen::VectorXd ar = gather(xr, dofs), ai = gather(xi, dofs);
+    const size_t p = static_cast<size_t>(parts.of_element[static_cast<size_t>(sub.global_element(static_cast<int>(e)))]);
+    local[2 * p] += quad(lr.M, ar, ai);
+    local[2 * p + 1] += quad(lr.K, ar, ai);
+  }
+  Eigen::VectorXd phi;
+  Eigen::MatrixXd kphi;
+  for (size_t c = 0; c < m.constraints().size(); ++c) {
+    const Constraint& con = *m.constraints()[c];
+    const std::vector<int> dofs = m.dofs_of(con.nodes()), confs = m.confs_of(con.nodes());
+    const Eigen::VectorXd lam = s.lambda.segment(m.first_multiplier(static_cast<int>(c)), con.size());
+    kphi.setZero(static_cast<Eigen::Index>(dofs.size()), static_cast<Eigen::Index>(dofs.size()));
+    con.geometric_stiffness(gather(s.q, confs), s.t, lam, kphi);
+    const size_t p =
+        static_cast<size_t>(parts.of_constraint[static_cast<size_t>(sub.global_constraint(static_cast<int>(c)))]);
+    local[2 * p + 1] += quad(kphi, gather(xr, dofs), gather(xi, dofs));
+  }
+  std::vector<double> all(2 * np, 0.0);
+  MPI_Allreduce(local.data(), all.data(), static_cast<int>(2 * np), MPI_DOUBLE, MPI_SUM, sub.comm());
+  kin.assign(np, 0.0);
+  pot.assign(np, 0.0);
+  for (size_t p = 0; p < np; ++p) {
+    kin[p] = all[2 * p];
+    pot[p] = all[2 * p + 1];
+  }
+}
+
+/// Scales the shape so that its largest translation is 1 (real, phase removed); a shape with no
+/// translation above 10⁻⁸ × (largest rotation × model size) is scaled by its largest rotation.
+double normalize(const Subdomain& sub, const DofOwner& owner, double model_size, Eigen::VectorXd& xr,
+                 Eigen::VectorXd& xi) {
+  const Model& m = sub.model();
+  // Largest |x_j| among translations and among rotations, with its complex value.
+  double best[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  for (int i = 0; i < sub.num_owned_dofs(); ++i) {
+    const Node& n = m.node(owner.node[static_cast<size_t>(i)]);
+    const int kind = owner.index[static_cast<size_t>(i)] < translations(n) ? 0 : 1;
+    const double a = std::hypot(xr[i], xi[i]);
+    if (a > best[kind][0]) best[kind][0] = a, best[kind][1] = xr[i], best[kind][2] = xi[i];
+  }
+  int size = 1;
+  MPI_Comm_size(sub.comm(), &size);
+  std::vector<double> all(static_cast<size_t>(6 * size));
+  MPI_Allgather(&best[0][0], 6, MPI_DOUBLE, all.data(), 6, MPI_DOUBLE, sub.comm());
+  double g[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  for (int r = 0; r < size; ++r)
+    for (int k = 0; k < 2; ++k)
+      if (all[static_cast<size_t>(6 * r + 3 * k)] > g[k][0])
+        for (int j = 0; j < 3; ++j) g[k][j] = all[static_cast<size_t>(6 * r + 3 * k + j)];
+  const int k = g[0][0] > 1e-8 * g[1][0] * std::max(model_size, 1e-300) || g[1][0] == 0.0 ? 0 : 1;
+  if (g[k][0] == 0.0) return 0.0;
+  // x ← x / z with z the largest entry: that entry becomes 1, the phase of the whole shape follows.
+  const std::complex<double> z(g[k][1], g[k][2]);
+  for (Eigen::Index i = 0; i < xr.size(); ++i) {
+    const std::complex<double> v = std::complex<double>(xr[i], xi[i]) / z;
+    xr[i] = v.real();
+    xi[i] = v.imag();
+  }
+  return g[1][0] / std::hypot(g[k][1], g[k][2]);  // the largest rotation after scaling
+}
+
+/// Largest distance between two nodes' positions (bounding-box diagonal, m), over all ranks.
+double model_size(const Subdomain& sub, const MechanicalState& s) {
+  const Model& m = sub.model();
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (const Node& n : m.nodes()) {
+    const int dims = n.kind == NodeKind::Frame3D ? 3 : n.kind == NodeKind::LineParticle2D ? 0 : 2;
+    for (int d = 0; d < dims; ++d) {
+      lo[d] = std::min(lo[d], s.q[n.first_conf + d]);
+      hi[d] = std::max(hi[d], s.q[n.first_conf + d]);
+    }
+  }
+  double glo[3], ghi[3];
+  MPI_Allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, sub.comm());
+  MPI_Allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, sub.comm());
+  double d2 = 0.0;
+  for (int d = 0; d < 3; ++d)
+    if (ghi[d] >= glo[d]) d2 += (ghi[d] - glo[d]) * (ghi[d] - glo[d]);
+  return std::sqrt(d2);
+}
+
+/// Forward or backward whirl: the sense of the orbit of the nodes' translations x(t) = Re(x e^{iωt}),
+/// n = x_im × x_re per node, against the spin Ω (world frame) of the spinning frames.
+std::string whirl_of(const Subdomain& sub, const MechanicalState& s, const Eigen::VectorXd& xr, const Eigen::VectorXd& xi) {
+  const Model& m = sub.model();
+  double sum[2] = {0.0, 0.0};  // Σ n·Ω, Σ |n||Ω|
+  for (int nd = 0; nd < sub.num_owned_nodes(); ++nd) {
+    const Node& n = m.node(nd);
+    if (n.kind != NodeKind::Frame3D) continue;
+    const Eigen::Vector4d qv = s.q.segment<4>(n.first_conf + 3);
+    const Eigen::Quaterniond quat(qv[0], qv[1], qv[2], qv[3]);
+    const Eigen::Vector3d omega = quat.normalized().toRotationMatrix() * s.v.segment<3>(n.first_dof + 3);
+    const Eigen::Vector3d orbit = xi.segment<3>(n.first_dof).cross(xr.segment<3>(n.first_dof));
+    sum[0] += orbit.dot(omega);
+    sum[1] += orbit.norm() * omega.norm();
+  }
+  double g[2];
+  MPI_Allreduce(sum, g, 2, MPI_DOUBLE, MPI_SUM, sub.comm());
+  if (!(g[1] > 0.0) || std::fabs(g[0]) < 1e-6 * g[1]) return "";
+  return g[0] > 0.0 ? "forward" : "backward";
+}
+
+struct RawPair {
+  double re, im;
+  Eigen::VectorXd xr, xi;
+};
+
+void set_mumps_shift_invert(ST st) {
+  KSP ksp;
+  PC pc;
+  check_petsc(STSetType(st, STSINVERT), "STSetType");
+  check_petsc(STGetKSP(st, &ksp), "STGetKSP");
+  check_petsc(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+  check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
+  check_petsc(PCSetType(pc, PCLU), "PCSetType");
+  check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+}
+
+std::string converged_list(const std::vector<RawPair>& pairs, bool damped) {
+  std::ostringstream os;
+  os.precision(6);
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const double f = damped ? std::fabs(pairs[i].im) / kTwoPi : std::sqrt(std::fabs(pairs[i].re)) / kTwoPi;
+    os << (i ? ", " : "") << f << " Hz";
+  }
+  return pairs.empty() ? std::string("none") : os.str();
+}
+
+[[noreturn]] void not_converged(int want, const std::vector<RawPair>& got, bool damped, int its) {
+  std::ostringstream os;
+  os << "modes: the eigensolver did not converge: " << got.size() << " of " << want << " modes after " << its
+     << " iterations (converged: " << converged_list(got, damped) << "). Ask again with more iterations or a "
+     << "larger subspace, e.g. " << (damped ? "-pep_max_it 1000 -pep_ncv " : "-eps_max_it 1000 -eps_ncv ")
+     << 3 * want + 10 << ", or fewer modes (modes.count)";
+  throw SolverError(os.str());
+}
+
+}  // namespace
+
+ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& state, double load_factor,
+                          const ModalOptions& options) {
+  const Subdomain& sub = system.subdomain();
+  const MPI_Comm comm = sub.comm();
+  const Model& global = sub.global_model();
+  ModalResult res;
+  const int free_dofs = global.num_dofs() - global.num_multipliers();
+  if (free_dofs < 1)
+    throw InputError("modes: the model has no degree of freedom (" + std::to_string(global.num_dofs()) +
+                     " coordinates, " + std::to_string(global.num_multipliers()) + " joint equations)");
+  if (options.count < 0) throw InputError("modes.count: expected at least 1 mode");
+  if (options.count > free_dofs) {
+    std::ostringstream os;
+    os << "modes.count = " << options.count << ": the model has only " << free_dofs << " degrees of freedom ("
+       << global.num_dofs() << " coordinates - " << global.num_multipliers() << " joint equations); ask for at most "
+       << free_dofs;
+    throw InputError(os.str());
+  }
+  const int count = options.count > 0 ? options.count : std::min(10, free_dofs);
+  res.requested = count;
+
+  Pencil p;
+  build_pencil(system, state, load_factor, p);
+  res.spectral_scale = check_and_scale(system, p);
+  PetscReal nk = 0.0, nm = 0.0, nc = 0.0;
+  check_petsc(MatNorm(p.K, NORM_INFINITY, &nk), "norm");
+  check_petsc(MatNorm(p.M, NORM_INFINITY, &nm), "norm");
+  check_petsc(MatNorm(p.C, NORM_INFINITY, &nc), "norm");
+  // Damped when C is more than round-off against √(‖K‖‖M‖), the scale of ωM and of K/ω.
+  const double cscale = nk > 0.0 ? std::sqrt(nk * nm) : nm;
+  res.damped = nc > 1e-12 * cscale;
+  const double scale = res.spectral_scale > 0.0 ? res.spectral_scale : 1.0;
+  if (res.damped && options.shift > 0.0)
+    throw InputError("modes.shift: the damped/gyroscopic problem (C != 0) is searched from the lowest natural "
+                     "frequency up (a real PETSc build has no complex shift); leave modes.shift out");
+  // The shift: at the requested frequency, else just below zero — K alone is singular when rigid-
+  // body modes exist, K + |σ|M is not.
+  const double sigma = options.shift > 0.0 ? std::pow(kTwoPi * options.shift, 2) : -1e-6 * scale;
+
+  std::vector<RawPair> pairs;
+  Vec xr = nullptr, xi = nullptr;
+  check_petsc(MatCreateVecs(p.K, &xr, nullptr), "vectors");
+  check_petsc(VecDuplicate(xr, &xi), "vectors");
+  ModelVector mr, mi;
+  PetscInt nconv = 0, its = 0;
+  if (!res.damped) {
+    EPS eps;
+    check_petsc(EPSCreate(comm, &eps), "EPSCreate");
+    check_petsc(EPSSetOperators(eps, p.K, p.M), "EPSSetOperators");
+    // Non-Hermitian: K + K_Φ is unsymmetric away from equilibrium (follower loads, the Lie-group
+    // linearization in motion), and the pencil is indefinite in any case (the multiplier block).
+    check_petsc(EPSSetProblemType(eps, EPS_GNHEP), "EPSSetProblemType");
+    check_petsc(EPSSetDimensions(eps, count, PETSC_DEFAULT, PETSC_DEFAULT), "EPSSetDimensions");
+    check_petsc(EPSSetTarget(eps, sigma), "EPSSetTarget");
+    check_petsc(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
+    check_petsc(EPSSetTolerances(eps, 1e-12, 500), "EPSSetTolerances");
+    ST st;
+    check_petsc(EPSGetST(eps, &st), "EPSGetST");
+    set_mumps_shift_invert(st);
+    check_petsc(EPSSetFromOptions(eps), "EPSSetFromOptions");
+    const PetscErrorCode ierr = EPSSolve(eps);
+    if (ierr) {
+      EPSDestroy(&eps);
+      VecDestroy(&xr);
+      VecDestroy(&xi);
+      throw SolverError("modes: the shift-and-invert factorization or the eigensolver failed (PETSc error " +
+                        std::to_string(ierr) + "); with modes.shift, move it away from an eigenfrequency");
+    }
+    check_petsc(EPSGetConverged(eps, &nconv), "EPSGetConverged");
+    check_petsc(EPSGetIterationNumber(eps, &its), "EPSGetIterationNumber");
+    for (PetscInt i = 0; i < nconv; ++i) {
+      PetscScalar kr, ki;
+      check_petsc(EPSGetEigenpair(eps, i, &kr, &ki, xr, xi), "EPSGetEigenpair");
+      if (ki < 0.0) continue;  // conjugate of the previous one (round-off of a double ω²)
+      check_petsc(system.to_model(xr, mr), "gather");
+      check_petsc(system.to_model(xi, mi), "gather");
+      pairs.push_back({kr, ki, mr.dofs, mi.dofs});
+    }
+    check_petsc(EPSDestroy(&eps), "EPSDestroy");
+  } else {
+    PEP pep;
+    check_petsc(PEPCreate(comm, &pep), "PEPCreate");
+    Mat ops[3] = {p.K, p.C, p.M};
+    check_petsc(PEPSetOperators(pep, 3, ops), "PEPSetOperators");
+    check_petsc(PEPSetProblemType(pep, PEP_GENERAL), "PEPSetProblemType");
+    // Each oscillating mode is a conjugate pair: twice the modes, plus room for real eigenvalues.
+    check_petsc(PEPSetDimensions(pep, 2 * count, PETSC_DEFAULT, PETSC_DEFAULT), "PEPSetDimensions");
+    check_petsc(PEPSetTarget(pep, -std::sqrt(1e-6 * scale)), "PEPSetTarget");
+    check_petsc(PEPSetWhichEigenpairs(pep, PEP_TARGET_MAGNITUDE), "PEPSetWhichEigenpairs");
+    check_petsc(PEPSetTolerances(pep, 1e-12, 500), "PEPSetTolerances");
+    ST st;
+    check_petsc(PEPGetST(pep, &st), "PEPGetST");
+    set_mumps_shift_invert(st);
+    check_petsc(PEPSetFromOptions(pep), "PEPSetFromOptions");
+    const PetscErrorCode ierr = PEPSolve(pep);
+    if (ierr) {
+      PEPDestroy(&pep);
+      VecDestroy(&xr);
+      VecDestroy(&xi);
+      throw SolverError("modes: the shift-and-invert factorization or the quadratic eigensolver failed (PETSc error " +
+                        std::to_string(ierr) + ")");
+    }
+    check_petsc(PEPGetConverged(pep, &nconv), "PEPGetConverged");
+    check_petsc(PEPGetIterationNumber(pep, &its), "PEPGetIterationNumber");
+    for (PetscInt i = 0; i < nconv; ++i) {
+      PetscScalar kr, ki;
+      check_petsc(PEPGetEigenpair(pep, i, &kr, &ki, xr, xi), "PEPGetEigenpair");
+      if (ki < 0.0) continue;  // the conjugate of the previous pair: the same mode
+      check_petsc(system.to_model(xr, mr), "gather");
+      check_petsc(system.to_model(xi, mi), "gather");
+      pairs.push_back({kr, ki, mr.dofs, mi.dofs});
+    }
+    check_petsc(PEPDestroy(&pep), "PEPDestroy");
+  }
+  VecDestroy(&xr);
+  VecDestroy(&xi);
+  res.iterations = static_cast<int>(its);
+  res.target = res.damped ? -std::sqrt(1e-6 * scale) : sigma;
+  if (static_cast<int>(pairs.size()) < count) not_converged(count, pairs, res.damped, res.iterations);
+  // Nearest the target first (SLEPc's order); keep `count`, then sort by frequency.
+  pairs.resize(static_cast<size_t>(count));
+  res.converged = static_cast<int>(pairs.size());
+
+  const Parts parts = model_parts(global);
+  res.parts = parts.names;
+  const DofOwner owner = dof_owners(system.model());
+  const double size = model_size(sub, state);
+  res.model_size = size;
+  const double zero = kZeroRelative * res.spectral_scale;
+  for (RawPair& rp : pairs) {
+    Mode md;
+    md.re = rp.re;
+    md.im = res.damped ? rp.im : 0.0;
+    if (!res.damped) {
+      // ω² of a real pencil: a complex pair here is round-off of a (nearly) double eigenvalue.
+      if (rp.re > zero) md.kind = ModeKind::Elastic;
+      else if (rp.re >= -zero) md.kind = ModeKind::RigidBody;
+      else md.kind = ModeKind::Unstable;
+      md.frequency = md.kind == ModeKind::Elastic ? std::sqrt(rp.re) / kTwoPi : 0.0;
+      md.natural_frequency = md.frequency;
+      rp.xi.setZero(rp.xr.size());
+    } else {
+      const double mag = std::hypot(rp.re, rp.im);
+      if (mag <= std::sqrt(zero)) md.kind = ModeKind::RigidBody;
+      else if (rp.re > std::sqrt(zero)) md.kind = ModeKind::Unstable;
+      else if (rp.im <= 1e-10 * mag) md.kind = ModeKind::Overdamped;
+      else md.kind = ModeKind::Elastic;
+      md.frequency = md.kind == ModeKind::RigidBody ? 0.0 : rp.im / kTwoPi;
+      md.natural_frequency = md.kind == ModeKind::RigidBody ? 0.0 : mag / kTwoPi;
+      md.damping_ratio = md.kind == ModeKind::RigidBody ? 0.0 : -rp.re / mag;
+    }
+    md.largest_rotation = normalize(sub, owner, size, rp.xr, rp.xi);
+    std::vector<double> kin, pot;
+    energies(sub, parts, state, load_factor, rp.xr, rp.xi, kin, pot);
+    double tk = 0.0, tp = 0.0;
+    for (double v : kin) tk += v;
+    for (double v : pot) tp += v;
+    md.modal_mass = tk;
+    md.kinetic_share.assign(kin.size(), 0.0);
+    md.strain_share.assign(pot.size(), 0.0);
+    for (size_t k = 0; k < kin.size(); ++k) {
+      if (tk != 0.0) md.kinetic_share[k] = kin[k] / tk;
+      if (tp != 0.0) md.strain_share[k] = pot[k] / tp;
+      if (md.dominant_part < 0 || md.kinetic_share[k] > md.kinetic_share[static_cast<size_t>(md.dominant_part)])
+        md.dominant_part = static_cast<int>(k);
+    }
+    if (res.damped && md.kind == ModeKind::Elastic) md.whirl = whirl_of(sub, state, rp.xr, rp.xi);
+    md.shape_re = std::move(rp.xr);
+    md.shape_im = std::move(rp.xi);
+    res.modes.push_back(std::move(md));
+  }
+  std::stable_sort(res.modes.begin(), res.modes.end(), [](const Mode& a, const Mode& b) {
+    return a.natural_frequency < b.natural_frequency;
+  });
+  for (const Mode& md : res.modes)
+    if (md.kind == ModeKind::RigidBody) ++res.rigid_body_modes;
+  if (options.below > 0.0) {
+    const size_t before = res.modes.size();
+    res.modes.erase(std::remove_if(res.modes.begin(), res.modes.end(),
+                                   [&](const Mode& md) { return md.natural_frequency > options.below; }),
+                    res.modes.end());
+    if (res.modes.size() == before)
+      res.warnings.push_back("all " + std::to_string(before) + " modes found are below modes.below = " +
+                             std::to_string(options.below) + " Hz: there may be more (raise modes.count)");
+  }
+  return res;
+}
+
+MechanicalState displaced_state(const Model& model, const MechanicalState& state, const Mode& mode, double amplitude,
+                                double phase) {
+  MechanicalState out = state;
+  const Eigen::VectorXd dx = amplitude * (mode.shape_re * std::cos(phase) - mode.shape_im * std::sin(phase));
+  model.retract(out.q, dx);
+  return out;
+}
+
+}  // namespace alphaflex
