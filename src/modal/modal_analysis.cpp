@@ -67,6 +67,60 @@ void build_pencil(SaddlePointSystem& system, const MechanicalState& s, double lo
   MatDestroy(&zero);
 }
 
+double global_max(double v, MPI_Comm comm);
+
+/// The velocity kinematics of the group nodes. With q = q̄ ∘ exp(δ) on a frame (rotation R̄ exp(δθ^),
+/// body angular velocity Ω), Ω = exp(−δθ^) Ω̄ + T(δθ) δθ̇ = Ω̄ + Ω̄ × δθ + δθ̇ + O(δ²): the
+/// perturbation of the velocity is δv = δ̇ + G δ and of the acceleration δv̇ = δ̈ + G δ̇ + Ġ δ, with
+/// G = blockdiag(0, Ω̄^) per frame node (0 on translations, which are additive, and on vector-space
+/// nodes). Substituted into M δv̇ + C δv + K δ: M δ̈ + (C + M G) δ̇ + (K + C G + M Ġ) δ. The first
+/// product is the gyroscopic matrix of the Lie-group formulation that the Newton matrix (which
+/// only needs the tangent at fixed v) leaves out. Returns false (nothing to add) when no frame
+/// turns.
+bool add_group_kinematics(const Subdomain& sub, const MechanicalState& s, Pencil& p) {
+  const Model& m = sub.model();
+  std::vector<std::pair<int, Eigen::Vector3d>> omega, omega_dot;  // PETSc index of the first rotation dof
+  double largest = 0.0;
+  for (int nd = 0; nd < sub.num_owned_nodes(); ++nd) {
+    const Node& n = m.node(nd);
+    if (n.kind != NodeKind::Frame3D) continue;
+    const int row = sub.dof_indices()[static_cast<size_t>(n.first_dof + 3)];
+    omega.emplace_back(row, s.v.segment<3>(n.first_dof + 3));
+    omega_dot.emplace_back(row, s.qdd.segment<3>(n.first_dof + 3));
+    largest = std::max({largest, omega.back().second.norm(), omega_dot.back().second.norm()});
+  }
+  if (global_max(largest, sub.comm()) == 0.0) return false;
+  PetscInt rows = 0, cols = 0;
+  check_petsc(MatGetLocalSize(p.K, &rows, &cols), "local size");
+  auto skew_blocks = [&](const std::vector<std::pair<int, Eigen::Vector3d>>& w, Mat* out) {
+    check_petsc(MatCreateAIJ(sub.comm(), rows, cols, PETSC_DETERMINE, PETSC_DETERMINE, 3, nullptr, 0, nullptr, out),
+                "MatCreateAIJ");
+    for (const auto& [row, v] : w) {
+      // ŵ (row-major): ŵ δ = w × δ.
+      const PetscScalar hat[9] = {0.0, -v[2], v[1], v[2], 0.0, -v[0], -v[1], v[0], 0.0};
+      const PetscInt idx[3] = {row, row + 1, row + 2};
+      check_petsc(MatSetValues(*out, 3, idx, 3, idx, hat, INSERT_VALUES), "MatSetValues");
+    }
+    check_petsc(MatAssemblyBegin(*out, MAT_FINAL_ASSEMBLY), "assembly");
+    check_petsc(MatAssemblyEnd(*out, MAT_FINAL_ASSEMBLY), "assembly");
+  };
+  Mat G = nullptr, Gdot = nullptr, MG = nullptr, CG = nullptr, MGdot = nullptr;
+  skew_blocks(omega, &G);
+  skew_blocks(omega_dot, &Gdot);
+  check_petsc(MatMatMult(p.M, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &MG), "M G");
+  check_petsc(MatMatMult(p.C, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CG), "C G");
+  check_petsc(MatMatMult(p.M, Gdot, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &MGdot), "M Gdot");
+  check_petsc(MatAXPY(p.K, 1.0, CG, DIFFERENT_NONZERO_PATTERN), "K + C G");
+  check_petsc(MatAXPY(p.K, 1.0, MGdot, DIFFERENT_NONZERO_PATTERN), "K + M Gdot");
+  check_petsc(MatAXPY(p.C, 1.0, MG, DIFFERENT_NONZERO_PATTERN), "C + M G");
+  MatDestroy(&G);
+  MatDestroy(&Gdot);
+  MatDestroy(&MG);
+  MatDestroy(&CG);
+  MatDestroy(&MGdot);
+  return true;
+}
+
 double global_max(double v, MPI_Comm comm) {
   double g = 0.0;
   MPI_Allreduce(&v, &g, 1, MPI_DOUBLE, MPI_MAX, comm);
@@ -286,25 +340,31 @@ double model_size(const Subdomain& sub, const MechanicalState& s) {
   return std::sqrt(d2);
 }
 
-/// Forward or backward whirl: the sense of the orbit of the nodes' translations x(t) = Re(x e^{iωt}),
-/// n = x_im × x_re per node, against the spin Ω (world frame) of the spinning frames.
+/// Forward or backward whirl: the sense of the orbit x(t) = Re(x e^{iωt}) of the nodes' translations,
+/// n = x_im × x_r per node (world frame), against the spin Ω (world frame) of the spinning frames;
+/// when no node translates (a rotor on a joint at its centre), the orbit of the rotations (body
+/// frame, turned to the world).
 std::string whirl_of(const Subdomain& sub, const MechanicalState& s, const Eigen::VectorXd& xr, const Eigen::VectorXd& xi) {
   const Model& m = sub.model();
-  double sum[2] = {0.0, 0.0};  // Σ n·Ω, Σ |n||Ω|
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};  // translations: Σ n·Ω, Σ |n||Ω|; rotations: the same
   for (int nd = 0; nd < sub.num_owned_nodes(); ++nd) {
     const Node& n = m.node(nd);
     if (n.kind != NodeKind::Frame3D) continue;
     const Eigen::Vector4d qv = s.q.segment<4>(n.first_conf + 3);
-    const Eigen::Quaterniond quat(qv[0], qv[1], qv[2], qv[3]);
-    const Eigen::Vector3d omega = quat.normalized().toRotationMatrix() * s.v.segment<3>(n.first_dof + 3);
+    const Eigen::Matrix3d R = Eigen::Quaterniond(qv[0], qv[1], qv[2], qv[3]).normalized().toRotationMatrix();
+    const Eigen::Vector3d omega = R * s.v.segment<3>(n.first_dof + 3);
     const Eigen::Vector3d orbit = xi.segment<3>(n.first_dof).cross(xr.segment<3>(n.first_dof));
+    const Eigen::Vector3d turn = R * xi.segment<3>(n.first_dof + 3).cross(xr.segment<3>(n.first_dof + 3));
     sum[0] += orbit.dot(omega);
     sum[1] += orbit.norm() * omega.norm();
+    sum[2] += turn.dot(omega);
+    sum[3] += turn.norm() * omega.norm();
   }
-  double g[2];
-  MPI_Allreduce(sum, g, 2, MPI_DOUBLE, MPI_SUM, sub.comm());
-  if (!(g[1] > 0.0) || std::fabs(g[0]) < 1e-6 * g[1]) return "";
-  return g[0] > 0.0 ? "forward" : "backward";
+  double g[4];
+  MPI_Allreduce(sum, g, 4, MPI_DOUBLE, MPI_SUM, sub.comm());
+  const int k = g[1] > 1e-12 * g[3] ? 0 : 2;
+  if (!(g[k + 1] > 0.0) || std::fabs(g[k]) < 1e-6 * g[k + 1]) return "";
+  return g[k] > 0.0 ? "forward" : "backward";
 }
 
 struct RawPair {
@@ -368,6 +428,7 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
   Pencil p;
   build_pencil(system, state, load_factor, p);
   res.spectral_scale = check_and_scale(system, p);
+  add_group_kinematics(sub, state, p);
   PetscReal nk = 0.0, nm = 0.0, nc = 0.0;
   check_petsc(MatNorm(p.K, NORM_INFINITY, &nk), "norm");
   check_petsc(MatNorm(p.M, NORM_INFINITY, &nm), "norm");
@@ -375,7 +436,12 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
   // Damped when C is more than round-off against √(‖K‖‖M‖), the scale of ωM and of K/ω.
   const double cscale = nk > 0.0 ? std::sqrt(nk * nm) : nm;
   res.damped = nc > 1e-12 * cscale;
-  const double scale = res.spectral_scale > 0.0 ? res.spectral_scale : 1.0;
+  // The scale of "zero": K/M, or (C/M)² when damping or spin dominate (a spinning rotor on a
+  // joint has no stiffness at all); 1 rad²/s² when nothing is stiff or damped (every mode is then
+  // a rigid-body mode, ω² at round-off).
+  if (res.damped && nm > 0.0) res.spectral_scale = std::max(res.spectral_scale, (nc / nm) * (nc / nm));
+  if (!(res.spectral_scale > 0.0)) res.spectral_scale = 1.0;
+  const double scale = res.spectral_scale;
   if (res.damped && options.shift > 0.0)
     throw InputError("modes.shift: the damped/gyroscopic problem (C != 0) is searched from the lowest natural "
                      "frequency up (a real PETSc build has no complex shift); leave modes.shift out");
@@ -430,7 +496,9 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
     check_petsc(PEPSetOperators(pep, 3, ops), "PEPSetOperators");
     check_petsc(PEPSetProblemType(pep, PEP_GENERAL), "PEPSetProblemType");
     // Each oscillating mode is a conjugate pair: twice the modes, plus room for real eigenvalues.
-    check_petsc(PEPSetDimensions(pep, 2 * count, PETSC_DEFAULT, PETSC_DEFAULT), "PEPSetDimensions");
+    // Each oscillating mode is a conjugate pair, and a free coordinate without damping a double
+    // zero (a Jordan block: two eigenvalues, one mode): room for both.
+    check_petsc(PEPSetDimensions(pep, 2 * count + 2, PETSC_DEFAULT, PETSC_DEFAULT), "PEPSetDimensions");
     check_petsc(PEPSetTarget(pep, -std::sqrt(1e-6 * scale)), "PEPSetTarget");
     check_petsc(PEPSetWhichEigenpairs(pep, PEP_TARGET_MAGNITUDE), "PEPSetWhichEigenpairs");
     check_petsc(PEPSetTolerances(pep, 1e-12, 500), "PEPSetTolerances");
@@ -462,6 +530,38 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
   VecDestroy(&xi);
   res.iterations = static_cast<int>(its);
   res.target = res.damped ? -std::sqrt(1e-6 * scale) : sigma;
+  const double zero = kZeroRelative * res.spectral_scale;
+  if (res.damped) {
+    // A rigid-body coordinate without damping has s = 0 twice with one eigenvector (a Jordan block,
+    // returned as two eigenvalues ~√ε apart with nearly the same vector): one mode. Zero
+    // eigenvalues whose shapes are in the span of those kept already are dropped.
+    const Eigen::Index owned = sub.num_owned_dofs();
+    std::vector<Eigen::VectorXd> basis;  // orthonormal (owned entries)
+    auto adds_direction = [&](const Eigen::VectorXd& x) {
+      auto dot = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+        double l = a.head(owned).dot(b.head(owned)), g = 0.0;
+        MPI_Allreduce(&l, &g, 1, MPI_DOUBLE, MPI_SUM, comm);
+        return g;
+      };
+      Eigen::VectorXd v = x;
+      const double n0 = std::sqrt(dot(v, v));
+      if (n0 == 0.0) return false;
+      for (const auto& b : basis) v -= dot(b, v) * b;
+      const double n1 = std::sqrt(dot(v, v));
+      if (n1 <= 1e-4 * n0) return false;
+      basis.push_back(v / n1);
+      return true;
+    };
+    std::vector<RawPair> kept;
+    for (RawPair& rp : pairs) {
+      if (std::hypot(rp.re, rp.im) <= std::sqrt(zero)) {
+        const bool re_new = adds_direction(rp.xr), im_new = adds_direction(rp.xi);
+        if (!re_new && !im_new) continue;
+      }
+      kept.push_back(std::move(rp));
+    }
+    pairs = std::move(kept);
+  }
   if (static_cast<int>(pairs.size()) < count) not_converged(count, pairs, res.damped, res.iterations);
   // Nearest the target first (SLEPc's order); keep `count`, then sort by frequency.
   pairs.resize(static_cast<size_t>(count));
@@ -472,7 +572,6 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
   const DofOwner owner = dof_owners(system.model());
   const double size = model_size(sub, state);
   res.model_size = size;
-  const double zero = kZeroRelative * res.spectral_scale;
   for (RawPair& rp : pairs) {
     Mode md;
     md.re = rp.re;
