@@ -100,6 +100,37 @@ TEST(ModalCantilever, FrequenciesConvergeToClosedForms) {
   }
 }
 
+// About a static equilibrium: a simply supported column under an axial compressive load P (its
+// static analysis runs first; the compression enters through the geometric stiffness). Euler–
+// Bernoulli with axial load (Blevins, Formulas for Natural Frequency and Mode Shape, Table 8-15
+// case 1; Timoshenko, Young & Weaver, Vibration Problems in Engineering, Sec. 5.13):
+// ω_1² = (π/L)⁴ EI/ρA · (1 − P/P_cr), P_cr = π² EI/L², here P = P_cr/2 for bending about axis 3
+// (EI3 = 1) and P_cr/8 about axis 2 (EI2 = 4). The sine shape normalized to 1: modal mass ρA L/2.
+TEST(ModalStatic, CompressedColumnFrequencies) {
+  const std::string column = std::string(ALPHAFLEX_SOURCE_DIR) + "/tests/modal/column_modes.yaml";
+  const double exact[2] = {kPi * kPi * std::sqrt(0.5), kPi * kPi * 2.0 * std::sqrt(1.0 - 0.125)};
+  std::vector<double> hs, e[2];
+  for (int n : {4, 8, 16}) {
+    alphaflex::Scene scene = alphaflex::read_scene(column, {"parameters.n=" + std::to_string(n)}, PETSC_COMM_SELF);
+    const ModalRunSummary s = modes_of(scene, 2, PETSC_COMM_SELF);
+    ASSERT_EQ(s.state, "static equilibrium");
+    for (int k = 0; k < 2; ++k) {
+      const double omega = 2 * kPi * s.result.modes[static_cast<size_t>(k)].frequency;
+      e[k].push_back(std::fabs(omega - exact[k]) / exact[k]);
+      std::printf("column n = %2d, P = Pcr/%d: omega %.8f rad/s, exact %.8f, error %.3e, modal mass %.5f\n", n,
+                  k == 0 ? 2 : 8, omega, exact[k], e[k].back(), s.result.modes[static_cast<size_t>(k)].modal_mass);
+    }
+    if (n == 16) EXPECT_NEAR(s.result.modes[0].modal_mass, 0.5, 5e-3);  // measured 0.4968
+    hs.push_back(1.0 / n);
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double order = alphaflex::testing::fitted_slope(hs, e[k]);
+    std::printf("column mode %d: error %.3e on 16 elements, fitted order %.3f\n", k + 1, e[k].back(), order);
+    EXPECT_NEAR(order, 2.0, 0.15);
+    EXPECT_LT(e[k].back(), 1e-2);  // measured 6.4e-3 (P = Pcr/2) and 5e-3
+  }
+}
+
 // Spatial rigid rods on 3D revolute joints about z, hanging under gravity g: closed forms of small
 // oscillations (e.g. Meirovitch, Elements of Vibration Analysis, 2nd ed., Sec. 6.2; Goldstein,
 // Classical Mechanics, Sec. 6.2), uniform rods of mass m and length l:
