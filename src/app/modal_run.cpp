@@ -7,7 +7,7 @@
 #include <memory>
 #include <sstream>
 
-#include "alphaflex/app/exit_agreement.hpp"
+#include "alphaflex/app/run_objects.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/integrators/generalized_alpha.hpp"
@@ -20,15 +20,6 @@
 namespace alphaflex {
 
 namespace {
-
-/// The objects with collective destructors, outside the body (as in app/simulation.cpp).
-struct ModalObjects {
-  std::unique_ptr<Subdomain> sub;
-  std::unique_ptr<SaddlePointSystem> system;
-  std::unique_ptr<LinearSolver> solver;
-  std::unique_ptr<GeneralizedAlpha> integrator;
-  std::unique_ptr<ResultsWriter> writer;
-};
 
 /// Parts with a non-zero share in some mode (loads without stiffness drop out of the table).
 std::vector<size_t> active_parts(const ModalResult& r) {
@@ -63,7 +54,7 @@ void write_csv(const std::string& path, const ModalResult& r) {
   if (!out) throw InputError(path + ": write failed");
 }
 
-ModalRunSummary modes_body(ModalObjects& o, Scene& scene, const ModalRunOptions& opt, MPI_Comm comm) {
+ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& opt, MPI_Comm comm) {
   const double wall0 = MPI_Wtime();
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -161,13 +152,8 @@ ModalRunSummary modes_body(ModalObjects& o, Scene& scene, const ModalRunOptions&
 }  // namespace
 
 ModalRunSummary run_modes(Scene& scene, const ModalRunOptions& opt, MPI_Comm comm) {
-  ModalObjects objects;
-  try {
-    return modes_body(objects, scene, opt, comm);
-  } catch (const std::exception& e) {
-    fail_together(opt.exit_comm, exit_code_of(e), e.what(), opt.exit_timeout);
-    throw;
-  }
+  return run_with_objects(opt.exit_comm, opt.exit_timeout,
+                          [&](RunObjects& objects) { return modes_body(objects, scene, opt, comm); });
 }
 
 std::string format_modes(const Scene& scene, const ModalRunSummary& s) {

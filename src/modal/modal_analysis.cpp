@@ -383,6 +383,66 @@ void set_mumps_shift_invert(ST st) {
   check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
 }
 
+/// The calls EPS and PEP share under their own names.
+template <class Solver>
+struct SlepcCalls {
+  PetscErrorCode (*get_st)(Solver, ST*);
+  PetscErrorCode (*from_options)(Solver);
+  PetscErrorCode (*solve)(Solver);
+  PetscErrorCode (*converged)(Solver, PetscInt*);
+  PetscErrorCode (*iterations)(Solver, PetscInt*);
+  PetscErrorCode (*pair)(Solver, PetscInt, PetscScalar*, PetscScalar*, Vec, Vec);
+  PetscErrorCode (*destroy)(Solver*);
+};
+const SlepcCalls<EPS> kEpsCalls{EPSGetST, EPSSetFromOptions, EPSSolve, EPSGetConverged, EPSGetIterationNumber,
+                                EPSGetEigenpair, EPSDestroy};
+const SlepcCalls<PEP> kPepCalls{PEPGetST, PEPSetFromOptions, PEPSolve, PEPGetConverged, PEPGetIterationNumber,
+                                PEPGetEigenpair, PEPDestroy};
+
+/// Shift-and-invert with MUMPS, the command line's options over it, the solve, and the converged
+/// eigenpairs with Im ≥ 0 (a conjugate is the same mode) on this rank's coordinates. Destroys
+/// `solver`, also when it throws.
+template <class Solver>
+std::vector<RawPair> solve_and_collect(Solver solver, const SlepcCalls<Solver>& f, SaddlePointSystem& system,
+                                       Mat layout, int& iterations, const char* failure) {
+  Vec xr = nullptr, xi = nullptr;
+  std::vector<RawPair> pairs;
+  try {
+    ST st;
+    check_petsc(f.get_st(solver, &st), "get ST");
+    set_mumps_shift_invert(st);
+    check_petsc(f.from_options(solver), "SetFromOptions");
+    const PetscErrorCode ierr = f.solve(solver);
+    if (ierr)
+      throw SolverError(std::string("modes: ") + failure + " (PETSc error " + std::to_string(ierr) +
+                        ", in the shift-and-invert factorization or the iteration)");
+    PetscInt nconv = 0, its = 0;
+    check_petsc(f.converged(solver, &nconv), "converged");
+    check_petsc(f.iterations(solver, &its), "iterations");
+    iterations = static_cast<int>(its);
+    check_petsc(MatCreateVecs(layout, &xr, nullptr), "vectors");
+    check_petsc(VecDuplicate(xr, &xi), "vectors");
+    ModelVector mr, mi;
+    for (PetscInt i = 0; i < nconv; ++i) {
+      PetscScalar kr, ki;
+      check_petsc(f.pair(solver, i, &kr, &ki, xr, xi), "eigenpair");
+      if (ki < 0.0) continue;
+      check_petsc(system.to_model(xr, mr), "gather");
+      check_petsc(system.to_model(xi, mi), "gather");
+      pairs.push_back({kr, ki, mr.dofs, mi.dofs});
+    }
+  } catch (...) {
+    VecDestroy(&xr);
+    VecDestroy(&xi);
+    f.destroy(&solver);
+    throw;
+  }
+  VecDestroy(&xr);
+  VecDestroy(&xi);
+  check_petsc(f.destroy(&solver), "destroy");
+  return pairs;
+}
+
 std::string converged_list(const std::vector<RawPair>& pairs, bool damped) {
   std::ostringstream os;
   os.precision(6);
@@ -450,11 +510,7 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
   const double sigma = options.shift > 0.0 ? std::pow(kTwoPi * options.shift, 2) : -1e-6 * scale;
 
   std::vector<RawPair> pairs;
-  Vec xr = nullptr, xi = nullptr;
-  check_petsc(MatCreateVecs(p.K, &xr, nullptr), "vectors");
-  check_petsc(VecDuplicate(xr, &xi), "vectors");
-  ModelVector mr, mi;
-  PetscInt nconv = 0, its = 0;
+  int its = 0;
   if (!res.damped) {
     EPS eps;
     check_petsc(EPSCreate(comm, &eps), "EPSCreate");
@@ -466,69 +522,23 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
     check_petsc(EPSSetTarget(eps, sigma), "EPSSetTarget");
     check_petsc(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
     check_petsc(EPSSetTolerances(eps, 1e-12, 500), "EPSSetTolerances");
-    ST st;
-    check_petsc(EPSGetST(eps, &st), "EPSGetST");
-    set_mumps_shift_invert(st);
-    check_petsc(EPSSetFromOptions(eps), "EPSSetFromOptions");
-    const PetscErrorCode ierr = EPSSolve(eps);
-    if (ierr) {
-      EPSDestroy(&eps);
-      VecDestroy(&xr);
-      VecDestroy(&xi);
-      throw SolverError("modes: the shift-and-invert factorization or the eigensolver failed (PETSc error " +
-                        std::to_string(ierr) + "); with modes.shift, move it away from an eigenfrequency");
-    }
-    check_petsc(EPSGetConverged(eps, &nconv), "EPSGetConverged");
-    check_petsc(EPSGetIterationNumber(eps, &its), "EPSGetIterationNumber");
-    for (PetscInt i = 0; i < nconv; ++i) {
-      PetscScalar kr, ki;
-      check_petsc(EPSGetEigenpair(eps, i, &kr, &ki, xr, xi), "EPSGetEigenpair");
-      if (ki < 0.0) continue;  // conjugate of the previous one (round-off of a double ω²)
-      check_petsc(system.to_model(xr, mr), "gather");
-      check_petsc(system.to_model(xi, mi), "gather");
-      pairs.push_back({kr, ki, mr.dofs, mi.dofs});
-    }
-    check_petsc(EPSDestroy(&eps), "EPSDestroy");
+    pairs = solve_and_collect(eps, kEpsCalls, system, p.K, its,
+                              "the eigensolver failed; with modes.shift, move it away from an eigenfrequency");
   } else {
     PEP pep;
     check_petsc(PEPCreate(comm, &pep), "PEPCreate");
     Mat ops[3] = {p.K, p.C, p.M};
     check_petsc(PEPSetOperators(pep, 3, ops), "PEPSetOperators");
     check_petsc(PEPSetProblemType(pep, PEP_GENERAL), "PEPSetProblemType");
-    // Each oscillating mode is a conjugate pair: twice the modes, plus room for real eigenvalues.
     // Each oscillating mode is a conjugate pair, and a free coordinate without damping a double
     // zero (a Jordan block: two eigenvalues, one mode): room for both.
     check_petsc(PEPSetDimensions(pep, 2 * count + 2, PETSC_DEFAULT, PETSC_DEFAULT), "PEPSetDimensions");
     check_petsc(PEPSetTarget(pep, -std::sqrt(1e-6 * scale)), "PEPSetTarget");
     check_petsc(PEPSetWhichEigenpairs(pep, PEP_TARGET_MAGNITUDE), "PEPSetWhichEigenpairs");
     check_petsc(PEPSetTolerances(pep, 1e-12, 500), "PEPSetTolerances");
-    ST st;
-    check_petsc(PEPGetST(pep, &st), "PEPGetST");
-    set_mumps_shift_invert(st);
-    check_petsc(PEPSetFromOptions(pep), "PEPSetFromOptions");
-    const PetscErrorCode ierr = PEPSolve(pep);
-    if (ierr) {
-      PEPDestroy(&pep);
-      VecDestroy(&xr);
-      VecDestroy(&xi);
-      throw SolverError("modes: the shift-and-invert factorization or the quadratic eigensolver failed (PETSc error " +
-                        std::to_string(ierr) + ")");
-    }
-    check_petsc(PEPGetConverged(pep, &nconv), "PEPGetConverged");
-    check_petsc(PEPGetIterationNumber(pep, &its), "PEPGetIterationNumber");
-    for (PetscInt i = 0; i < nconv; ++i) {
-      PetscScalar kr, ki;
-      check_petsc(PEPGetEigenpair(pep, i, &kr, &ki, xr, xi), "PEPGetEigenpair");
-      if (ki < 0.0) continue;  // the conjugate of the previous pair: the same mode
-      check_petsc(system.to_model(xr, mr), "gather");
-      check_petsc(system.to_model(xi, mi), "gather");
-      pairs.push_back({kr, ki, mr.dofs, mi.dofs});
-    }
-    check_petsc(PEPDestroy(&pep), "PEPDestroy");
+    pairs = solve_and_collect(pep, kPepCalls, system, p.K, its, "the quadratic eigensolver failed");
   }
-  VecDestroy(&xr);
-  VecDestroy(&xi);
-  res.iterations = static_cast<int>(its);
+  res.iterations = its;
   res.target = res.damped ? -std::sqrt(1e-6 * scale) : sigma;
   const double zero = kZeroRelative * res.spectral_scale;
   if (res.damped) {

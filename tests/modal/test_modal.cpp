@@ -237,16 +237,22 @@ joints:
   EXPECT_EQ(tilt.whirl, "backward");
 }
 
+/// Runs `f`, which must throw an InputError whose message contains `text`.
+template <class F>
+void expect_input_error(F f, const std::string& text) {
+  try {
+    f();
+    ADD_FAILURE() << "no error; expected one with: " << text;
+  } catch (const alphaflex::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
 // Errors: more modes than degrees of freedom; a coordinate nothing holds.
 TEST(ModalErrors, TooManyModesAndFreeMasslessCoordinates) {
   alphaflex::Scene scene = alphaflex::read_scene_text(rods(1), "compound.yaml");
-  try {
-    modes_of(scene, 2, PETSC_COMM_SELF);
-    FAIL() << "no error";
-  } catch (const alphaflex::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("modes.count = 2: the model has only 1 degrees of freedom"), std::string::npos)
-        << e.what();
-  }
+  expect_input_error([&] { modes_of(scene, 2, PETSC_COMM_SELF); },
+                     "modes.count = 2: the model has only 1 degrees of freedom");
   alphaflex::Scene loose = alphaflex::read_scene_text(R"(
 solver: {h: 1e-3, t_end: 1e-3}
 bodies:
@@ -256,23 +262,13 @@ forces:
   - {name: spring, type: spring_damper, body1: slider, body2: ground, stiffness: 800, direction: [1, 0]}
 )", "loose.yaml");
   // Through `alphaflex modes` the consistent start names the coordinate first …
-  try {
-    modes_of(loose, 1, PETSC_COMM_SELF);
-    FAIL() << "no error";
-  } catch (const alphaflex::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("body 'ghost' (x) has no mass and no joint fixes it"), std::string::npos)
-        << e.what();
-  }
+  expect_input_error([&] { modes_of(loose, 1, PETSC_COMM_SELF); }, "body 'ghost' (x) has no mass and no joint fixes it");
   // … and the modal analysis itself refuses it at any state (a checkpoint, a static state).
   alphaflex::Subdomain sub(*loose.model, PETSC_COMM_SELF);
   alphaflex::SaddlePointSystem system(sub);
-  try {
-    alphaflex::compute_modes(system, sub.model().initial_state(), 1.0, alphaflex::ModalOptions{1, 0.0, 0.0});
-    FAIL() << "no error";
-  } catch (const alphaflex::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("neither mass nor stiffness nor a joint (ghost.x, ghost.y)"), std::string::npos)
-        << e.what();
-  }
+  expect_input_error(
+      [&] { alphaflex::compute_modes(system, sub.model().initial_state(), 1.0, alphaflex::ModalOptions{1, 0.0, 0.0}); },
+      "neither mass nor stiffness nor a joint (ghost.x, ghost.y)");
 }
 
 // Free-free: a beam with no joint has six rigid-body modes, reported at zero frequency and counted,
