@@ -100,6 +100,26 @@ TEST(ModalCantilever, FrequenciesConvergeToClosedForms) {
   }
 }
 
+// modes.below keeps the modes under a frequency; modes.shift finds those nearest a frequency
+// (shift-and-invert at (2π shift)²). The reference is the same model's lowest-first solution.
+TEST(ModalCantilever, BelowAndShiftSelectModes) {
+  alphaflex::Scene scene = alphaflex::read_scene(kCantilever, {"parameters.n=8"}, PETSC_COMM_SELF);
+  const ModalRunSummary all = modes_of(scene, 8, PETSC_COMM_SELF);
+  ModalRunOptions opt;
+  opt.write_results = false;
+  opt.modes.count = 8;
+  opt.modes.below = 0.5 * (all.result.modes[2].frequency + all.result.modes[3].frequency);
+  const ModalRunSummary below = alphaflex::run_modes(scene, opt, PETSC_COMM_SELF);
+  ASSERT_EQ(below.result.modes.size(), 3u);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(below.result.modes[static_cast<size_t>(k)].frequency, all.result.modes[static_cast<size_t>(k)].frequency,
+                1e-10 * all.result.modes[static_cast<size_t>(k)].frequency);
+  opt.modes = alphaflex::ModalOptions{1, 0.0, all.result.modes[5].frequency * 1.001};
+  const ModalRunSummary near = alphaflex::run_modes(scene, opt, PETSC_COMM_SELF);
+  ASSERT_EQ(near.result.modes.size(), 1u);
+  EXPECT_NEAR(near.result.modes[0].frequency, all.result.modes[5].frequency, 1e-10 * all.result.modes[5].frequency);
+}
+
 // About a static equilibrium: a simply supported column under an axial compressive load P (its
 // static analysis runs first; the compression enters through the geometric stiffness). Euler–
 // Bernoulli with axial load (Blevins, Formulas for Natural Frequency and Mode Shape, Table 8-15
