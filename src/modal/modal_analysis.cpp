@@ -237,18 +237,26 @@ Parts model_parts(const Model& global) {
   return p;
 }
 
-/// Kinetic (x̄ᵀMx) and potential (x̄ᵀ(K + K_Φ)x, symmetric part) energy of a (complex) shape per
-/// part, over the whole model (elements and joints owned by this rank, then a sum over ranks).
-void energies(const Subdomain& sub, const Parts& parts, const MechanicalState& s, double load_factor,
-              const Eigen::VectorXd& xr, const Eigen::VectorXd& xi, std::vector<double>& kin, std::vector<double>& pot) {
+/// Kinetic (x̄ᵀMx) and potential (x̄ᵀ(K + K_Φ)x, symmetric part) energy of every mode's (complex)
+/// shape per part: each element and joint owned by this rank evaluated once for all modes, then a
+/// sum over ranks. Fills the modal mass, the shares and the dominant part of each mode.
+void energy_shares(const Subdomain& sub, const Parts& parts, const MechanicalState& s, double load_factor,
+                   std::vector<Mode>& modes) {
   const Model& m = sub.model();
-  const size_t np = parts.names.size();
-  std::vector<double> local(2 * np, 0.0);
-  LocalState ls;
-  LocalResidual lr;
+  const size_t np = parts.names.size(), nm = modes.size();
+  std::vector<double> local(2 * np * nm, 0.0);  // [mode][part][kinetic, potential]
   auto quad = [](const Eigen::MatrixXd& A, const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
     return a.dot(A * a) + b.dot(A * b);
   };
+  auto add = [&](const std::vector<int>& dofs, size_t part, const Eigen::MatrixXd* M, const Eigen::MatrixXd& K) {
+    for (size_t k = 0; k < nm; ++k) {
+      const Eigen::VectorXd ar = gather(modes[k].shape_re, dofs), ai = gather(modes[k].shape_im, dofs);
+      if (M) local[2 * (k * np + part)] += quad(*M, ar, ai);
+      local[2 * (k * np + part) + 1] += quad(K, ar, ai);
+    }
+  };
+  LocalState ls;
+  LocalResidual lr;
   for (size_t e = 0; e < m.elements().size(); ++e) {
     const Element& el = *m.elements()[e];
     const std::vector<int> dofs = m.dofs_of(el.nodes()), confs = m.confs_of(el.nodes());
@@ -259,12 +267,9 @@ void energies(const Subdomain& sub, const Parts& parts, const MechanicalState& s
     ls.load_factor = load_factor;
     lr.reset(static_cast<int>(dofs.size()), true);
     el.evaluate(ls, lr, true);
-    const Eigen::VectorXd ar = gather(xr, dofs), ai = gather(xi, dofs);
-    const size_t p = static_cast<size_t>(parts.of_element[static_cast<size_t>(sub.global_element(static_cast<int>(e)))]);
-    local[2 * p] += quad(lr.M, ar, ai);
-    local[2 * p + 1] += quad(lr.K, ar, ai);
+    add(dofs, static_cast<size_t>(parts.of_element[static_cast<size_t>(sub.global_element(static_cast<int>(e)))]), &lr.M,
+        lr.K);
   }
-  Eigen::VectorXd phi;
   Eigen::MatrixXd kphi;
   for (size_t c = 0; c < m.constraints().size(); ++c) {
     const Constraint& con = *m.constraints()[c];
@@ -272,17 +277,27 @@ void energies(const Subdomain& sub, const Parts& parts, const MechanicalState& s
     const Eigen::VectorXd lam = s.lambda.segment(m.first_multiplier(static_cast<int>(c)), con.size());
     kphi.setZero(static_cast<Eigen::Index>(dofs.size()), static_cast<Eigen::Index>(dofs.size()));
     con.geometric_stiffness(gather(s.q, confs), s.t, lam, kphi);
-    const size_t p =
-        static_cast<size_t>(parts.of_constraint[static_cast<size_t>(sub.global_constraint(static_cast<int>(c)))]);
-    local[2 * p + 1] += quad(kphi, gather(xr, dofs), gather(xi, dofs));
+    add(dofs, static_cast<size_t>(parts.of_constraint[static_cast<size_t>(sub.global_constraint(static_cast<int>(c)))]),
+        nullptr, kphi);
   }
-  std::vector<double> all(2 * np, 0.0);
-  MPI_Allreduce(local.data(), all.data(), static_cast<int>(2 * np), MPI_DOUBLE, MPI_SUM, sub.comm());
-  kin.assign(np, 0.0);
-  pot.assign(np, 0.0);
-  for (size_t p = 0; p < np; ++p) {
-    kin[p] = all[2 * p];
-    pot[p] = all[2 * p + 1];
+  std::vector<double> all(local.size(), 0.0);
+  MPI_Allreduce(local.data(), all.data(), static_cast<int>(all.size()), MPI_DOUBLE, MPI_SUM, sub.comm());
+  for (size_t k = 0; k < nm; ++k) {
+    Mode& md = modes[k];
+    double tk = 0.0, tp = 0.0;
+    for (size_t p = 0; p < np; ++p) {
+      tk += all[2 * (k * np + p)];
+      tp += all[2 * (k * np + p) + 1];
+    }
+    md.modal_mass = tk;
+    md.kinetic_share.assign(np, 0.0);
+    md.strain_share.assign(np, 0.0);
+    for (size_t p = 0; p < np; ++p) {
+      if (tk != 0.0) md.kinetic_share[p] = all[2 * (k * np + p)] / tk;
+      if (tp != 0.0) md.strain_share[p] = all[2 * (k * np + p) + 1] / tp;
+      if (md.dominant_part < 0 || md.kinetic_share[p] > md.kinetic_share[static_cast<size_t>(md.dominant_part)])
+        md.dominant_part = static_cast<int>(p);
+    }
   }
 }
 
@@ -605,25 +620,12 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
       md.damping_ratio = md.kind == ModeKind::RigidBody ? 0.0 : -rp.re / mag;
     }
     md.largest_rotation = normalize(sub, owner, size, rp.xr, rp.xi);
-    std::vector<double> kin, pot;
-    energies(sub, parts, state, load_factor, rp.xr, rp.xi, kin, pot);
-    double tk = 0.0, tp = 0.0;
-    for (double v : kin) tk += v;
-    for (double v : pot) tp += v;
-    md.modal_mass = tk;
-    md.kinetic_share.assign(kin.size(), 0.0);
-    md.strain_share.assign(pot.size(), 0.0);
-    for (size_t k = 0; k < kin.size(); ++k) {
-      if (tk != 0.0) md.kinetic_share[k] = kin[k] / tk;
-      if (tp != 0.0) md.strain_share[k] = pot[k] / tp;
-      if (md.dominant_part < 0 || md.kinetic_share[k] > md.kinetic_share[static_cast<size_t>(md.dominant_part)])
-        md.dominant_part = static_cast<int>(k);
-    }
     if (res.damped && md.kind == ModeKind::Elastic) md.whirl = whirl_of(sub, state, rp.xr, rp.xi);
     md.shape_re = std::move(rp.xr);
     md.shape_im = std::move(rp.xi);
     res.modes.push_back(std::move(md));
   }
+  energy_shares(sub, parts, state, load_factor, res.modes);
   std::stable_sort(res.modes.begin(), res.modes.end(), [](const Mode& a, const Mode& b) {
     return a.natural_frequency < b.natural_frequency;
   });
