@@ -117,8 +117,9 @@ ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& o
     std::filesystem::create_directories(opt.outdir, ec);
     // The shapes as a time series ParaView plays: mode k over t ∈ [k, k+1), one period in
     // `phases` frames, at an amplitude of 10 % of the model's size (at most 0.3 rad of rotation).
-    o.writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name + "_modeshapes", true, 0.0);
-    for (size_t k = 0; k < sum.result.modes.size(); ++k) {
+    // A frame is a whole state (~70 bytes per unknown): `output.hdf5: off` leaves them out.
+    if (rs.hdf5) o.writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name + "_modeshapes", true, 0.0);
+    for (size_t k = 0; o.writer && k < sum.result.modes.size(); ++k) {
       const Mode& m = sum.result.modes[k];
       double amp = 0.1 * sum.result.model_size;
       if (m.largest_rotation * amp > 0.3) amp = 0.3 / m.largest_rotation;
@@ -128,9 +129,11 @@ ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& o
         o.writer->write_fields(d);
       }
     }
-    o.writer->finish();
-    sum.h5 = o.writer->h5_path();
-    sum.xdmf = o.writer->xdmf_path();
+    if (o.writer) {
+      o.writer->finish();
+      sum.h5 = o.writer->h5_path();
+      sum.xdmf = o.writer->xdmf_path();
+    }
     sum.csv = (std::filesystem::path(opt.outdir) / (scene.name + "_modes.csv")).string();
     int ok = 1;
     std::string err;
@@ -181,7 +184,8 @@ std::string format_modes(const Scene& scene, const ModalRunSummary& s) {
   os << "  rigid-body (zero-frequency) modes: " << r.rigid_body_modes << " of the " << r.modes.size() << " found; "
      << r.iterations << " eigensolver iterations, " << std::setprecision(3) << s.solve_wall << " s (whole command "
      << s.wall << " s)\n";
-  if (!s.csv.empty()) os << "  table: " << s.csv << "\n  shapes: " << s.xdmf << " (mode k plays over t in [k, k+1))\n";
+  if (!s.csv.empty()) os << "  table: " << s.csv << "\n";
+  if (!s.xdmf.empty()) os << "  shapes: " << s.xdmf << " (mode k plays over t in [k, k+1))\n";
   return os.str();
 }
 

@@ -19,7 +19,7 @@ struct ModalRunOptions {
   ModalOptions modes;
   MPI_Comm exit_comm = MPI_COMM_NULL;  ///< as RunOptions::exit_comm
   double exit_timeout = 5.0;
-  int phases = 16;  ///< animation frames per mode (one period)
+  int phases = 8;   ///< animation frames per mode (one period)
 };
 
 struct ModalRunSummary {
