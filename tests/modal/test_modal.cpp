@@ -367,16 +367,20 @@ TEST(ModalCantilever, FreeFreeBeamHasSixRigidBodyModes) {
   EXPECT_GT(f7, exact);  // consistent mass, conforming stiffness: from above
 }
 
-// 1 and 2 ranks: under mpirun -np 2 the whole communicator solves the cantilever and the double
-// pendulum; each rank solves them alone too; frequencies agree to 1e-8 relative.
+// 1 and 2 ranks: under mpirun -np 2 the whole communicator solves the cantilever, the double
+// pendulum and the compressed column (about its static equilibrium); each rank solves them alone
+// too; frequencies agree to 1e-8 relative.
 TEST(ModalRanks, OneAndTwoRanksAgree) {
-  for (int which = 0; which < 2; ++which) {
+  const std::string column = std::string(ALPHAFLEX_SOURCE_DIR) + "/tests/modal/column_modes.yaml";
+  const char* names[3] = {"cantilever", "double pendulum", "compressed column (static state)"};
+  for (int which = 0; which < 3; ++which) {
     auto read = [&](MPI_Comm comm) {
-      return which == 0 ? alphaflex::read_scene(kCantilever, {"parameters.n=8"}, comm)
-                        : alphaflex::read_scene_text(rods(2), "double.yaml");
+      return which == 0   ? alphaflex::read_scene(kCantilever, {"parameters.n=8"}, comm)
+             : which == 1 ? alphaflex::read_scene_text(rods(2), "double.yaml")
+                          : alphaflex::read_scene(column, {"parameters.n=8"}, comm);
     };
     alphaflex::Scene world = read(PETSC_COMM_WORLD), self = read(PETSC_COMM_SELF);
-    const int count = which == 0 ? 10 : 2;
+    const int count = which == 1 ? 2 : 6;
     const ModalRunSummary a = modes_of(world, count, PETSC_COMM_WORLD), b = modes_of(self, count, PETSC_COMM_SELF);
     ASSERT_EQ(a.result.modes.size(), b.result.modes.size());
     for (size_t k = 0; k < a.result.modes.size(); ++k) {
@@ -386,7 +390,7 @@ TEST(ModalRanks, OneAndTwoRanksAgree) {
     }
     int rank = 0;
     MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-    if (rank == 0) std::printf("%s: %d modes agree on %d and 1 ranks\n", which ? "double pendulum" : "cantilever", count, a.ranks);
+    if (rank == 0) std::printf("%s: %d modes agree on %d and 1 ranks\n", names[which], count, a.ranks);
   }
 }
 
