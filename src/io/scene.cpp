@@ -422,8 +422,9 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   scene.file = label;
   if (!root.IsMap()) rd.fail(root, "(top level)", "expected a map of sections (solver, bodies, joints, ...)");
   rd.keys(root, "(top level)", {"name", "description", "parameters", "dimension", "gravity", "load", "solver", "output",
-                                "mesh", "beams", "shells", "bodies", "joints", "forces", "sensors", "study"});
-  // `study:` is read by `alphaflex study` (study/study_spec.hpp); a run ignores it.
+                                "mesh", "beams", "shells", "bodies", "joints", "forces", "sensors", "study", "modes"});
+  // `study:` is read by `alphaflex study` (study/study_spec.hpp), `modes:` by `alphaflex modes`
+  // (io/scene_modes.hpp); a run ignores them.
   rd.read_parameters(root["parameters"]);
   scene.name = root["name"] ? rd.text(root["name"], "name")
                             : std::filesystem::path(label).stem().string();
