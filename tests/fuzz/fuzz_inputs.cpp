@@ -75,7 +75,9 @@ namespace {
 
 struct Options {
   std::string source = ALPHAFLEX_SOURCE_DIR;
-  std::string work = "fuzz_work";
+  /// Scratch files and failures; by default under the system's temporary directory, not in the
+  /// working directory (which may be the source tree).
+  std::string work = (fs::temp_directory_path() / "alphaflex_fuzz_work").string();
   int scene_cases = 40;  ///< mutated cases per scene seed
   int msh_cases = 40;    ///< mutated cases per mesh seed
   int study_cases = 40;  ///< mutated cases per study seed
