@@ -8,6 +8,7 @@
 
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/petsc_error.hpp"
 
 namespace alphaflex {
 namespace {
@@ -28,10 +29,6 @@ void register_events() {
 
 
 }  // namespace
-
-void check_petsc(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw SolverError(std::string("PETSc error ") + std::to_string(ierr) + " in " + what);
-}
 
 LinearizedSystem::LinearizedSystem(SaddlePointSystem& system, LinearSolver& solver) : sys_(system), solver_(solver) {
   register_events();

@@ -23,6 +23,7 @@
 #include "alphaflex/joints/spatial_joints.hpp"
 #include "alphaflex/model/element.hpp"
 #include "alphaflex/model/node.hpp"
+#include "test_support.hpp"
 
 using namespace alphaflex;
 
@@ -81,17 +82,10 @@ Eigen::VectorXd difference(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1)
 
 Eigen::VectorXd unit(int n, int j) { return Eigen::VectorXd::Unit(n, j); }
 
-/// Central differences on the group, column j: [f(q ∘ exp(ε e_j)) − f(q ∘ exp(−ε e_j))] / 2ε.
+/// Central differences on the group, column j: [f(q ∘ exp(ε e_j)) − f(q ∘ exp(−ε e_j))] / 2ε,
+/// ε = kFdStep (test_support.hpp).
 Eigen::MatrixXd fd_on_group(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& q) {
-  const int n = static_cast<int>(q.size() / 7 * 6);
-  Eigen::MatrixXd J;
-  for (int j = 0; j < n; ++j) {
-    const Eigen::VectorXd col =
-        (f(retracted(q, kFdStep * unit(n, j))) - f(retracted(q, -kFdStep * unit(n, j)))) / (2.0 * kFdStep);
-    if (j == 0) J.resize(col.size(), n);
-    J.col(j) = col;
-  }
-  return J;
+  return alphaflex::testing::central_differences_on_frames(f, q, alphaflex::testing::fixed_fd_step(kFdStep));
 }
 
 double discrepancy(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double scale) {
@@ -862,13 +856,13 @@ TEST(RigidBody3D, TangentsAreZeroKConstantMAndCMatchingFiniteDifferencesInOmega)
         s.q);
     EXPECT_EQ(K_fd, Eigen::MatrixXd::Zero(6, 6));
     // C = ∂r/∂(ẋ, Ω) by central differences; C = [0 0; 0 Ω̂J − (JΩ)^].
-    Eigen::MatrixXd C_fd(6, 6);
-    for (int j = 0; j < 6; ++j) {
-      LocalState p = s, m = s;
-      p.v[j] += kFdStep;
-      m.v[j] -= kFdStep;
-      C_fd.col(j) = (evaluate(body, p, false).r - evaluate(body, m, false).r) / (2 * kFdStep);
-    }
+    const Eigen::MatrixXd C_fd = alphaflex::testing::central_differences(
+        [&](const Eigen::VectorXd& x) {
+          LocalState p = s;
+          p.v = x;
+          return evaluate(body, p, false).r;
+        },
+        s.v, alphaflex::testing::fixed_fd_step(kFdStep));
     const double d = discrepancy(t.C, C_fd, t.C.norm());
     worst = std::max(worst, d);
     EXPECT_LE(d, kRelTol) << "C:\n" << t.C.format(kFmt) << "\nFD:\n" << C_fd.format(kFmt);
