@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <memory>
 #include <sstream>
 
@@ -124,6 +125,29 @@ void write_campbell_csv(const std::string& path, const std::vector<double>& spee
   if (!out) throw InputError(path + ": write failed");
 }
 
+/// The chart of a Campbell table by scripts/campbell_plot.py (rank 0): its path, or empty with a
+/// warning when Debian's python3 or the script is missing or fails (the CSV is written anyway).
+std::string draw_campbell(const std::string& csv, std::vector<std::string>& warnings) {
+  const std::string python = "/usr/bin/python3", script = std::string(ALPHAFLEX_SOURCE_DIR) + "/scripts/campbell_plot.py";
+  std::error_code ec;
+  if (!std::filesystem::exists(python, ec) || !std::filesystem::is_regular_file(script, ec)) {
+    warnings.push_back("no Campbell chart: " + python + " or " + script + " is missing (the CSV is written)");
+    return "";
+  }
+  auto quote = [](const std::string& t) {
+    std::string q = "'";
+    for (char c : t) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  const std::string cmd = quote(python) + " " + quote(script) + " " + quote(csv) + " > /dev/null";
+  std::cout.flush();
+  if (std::system(cmd.c_str()) != 0) {
+    warnings.push_back("no Campbell chart: " + cmd + " failed (the CSV is written)");
+    return "";
+  }
+  return csv.substr(0, csv.size() - 4) + ".png";
+}
+
 /// Runs `write` on rank 0; an InputError there is thrown on every rank.
 template <class F>
 void on_rank0(MPI_Comm comm, F write) {
@@ -216,7 +240,10 @@ ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& o
       std::error_code ec;
       std::filesystem::create_directories(opt.outdir, ec);
       sum.campbell_csv = (std::filesystem::path(opt.outdir) / (scene.name + "_campbell.csv")).string();
-      on_rank0(comm, [&] { write_campbell_csv(sum.campbell_csv, sum.campbell_speeds, sum.campbell); });
+      on_rank0(comm, [&] {
+        write_campbell_csv(sum.campbell_csv, sum.campbell_speeds, sum.campbell);
+        sum.campbell_chart = draw_campbell(sum.campbell_csv, sum.result.warnings);
+      });
     }
     sum.wall = MPI_Wtime() - wall0;
     return sum;
@@ -280,7 +307,9 @@ std::string format_modes(const Scene& scene, const ModalRunSummary& s) {
       os << "\n";
     }
     os << "  " << std::setprecision(3) << s.solve_wall << " s (whole command " << s.wall << " s)\n";
+    for (const auto& w : r.warnings) os << "  warning: " << w << "\n";
     if (!s.campbell_csv.empty()) os << "  table: " << s.campbell_csv << "\n";
+    if (!s.campbell_chart.empty()) os << "  chart: " << s.campbell_chart << "\n";
     return os.str();
   }
   os << "modes of " << scene.name << " about the " << s.state << " (t = " << s.time << " s, load factor "

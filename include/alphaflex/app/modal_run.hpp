@@ -38,7 +38,7 @@ struct ModalRunSummary {
   /// frame); `result` is then the last speed's. campbell_csv: OUTDIR/NAME_campbell.csv.
   std::vector<double> campbell_speeds;
   std::vector<ModalResult> campbell;
-  std::string campbell_csv;
+  std::string campbell_csv, campbell_chart;  ///< the chart: scripts/campbell_plot.py (rank 0)
 };
 
 /// Collective; throws InputError / SolverError on every rank alike.
