@@ -223,6 +223,10 @@ ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& o
     // The Campbell diagram: at each speed, the relative equilibrium of the structure turning about
     // the driver joint's axis (constructed directly: docs/modes.md says why), its modes in the
     // frame turning with it.
+    for (const auto& c : sub.global_model().constraints())
+      if (c->name() == mo.campbell_driver && std::string(c->type()) != "revolute")
+        throw InputError(scene.file + ": modes.campbell.driver: joint '" + mo.campbell_driver + "' is a " + c->type() +
+                         "; expected a revolute joint (the structure turns about its axis)");
     const JointFrame jf = joint_frame(sub, s, mo.campbell_driver, "modes.campbell.driver", scene.file);
     const double t0 = MPI_Wtime();
     for (double speed : mo.campbell_speeds) {
