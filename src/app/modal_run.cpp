@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <memory>
 #include <sstream>
 
@@ -13,6 +14,7 @@
 #include "alphaflex/integrators/generalized_alpha.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
 #include "alphaflex/io/checkpoint.hpp"
+#include "alphaflex/joints/spatial_joints.hpp"
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
@@ -54,10 +56,118 @@ void write_csv(const std::string& path, const ModalResult& r) {
   if (!out) throw InputError(path + ": write failed");
 }
 
+
+/// The joint `name` of a modes.rotating_frame / modes.campbell key at state `s`: the angular
+/// velocity of its first body relative to its second (world frame, rad/s), and the axis (a3 of its
+/// first marker) and the point of that marker in the world. Collective (the rank owning the joint
+/// computes, the sum gives it to all).
+struct JointFrame {
+  Eigen::Vector3d spin = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::Zero(), point = Eigen::Vector3d::Zero();
+};
+JointFrame joint_frame(const Subdomain& sub, const MechanicalState& s, const std::string& name, const std::string& key,
+                       const std::string& file) {
+  bool found = false;
+  for (const auto& c : sub.global_model().constraints())
+    if (c->name() == name) {
+      found = c->nodes().size() <= 2 && dynamic_cast<const SpatialJoint*>(c.get()) != nullptr;
+      if (!found)
+        throw InputError(file + ": " + key + ": joint '" + name + "' is a " + c->type() +
+                         "; expected a spatial joint (revolute) of a 3D scene");
+    }
+  if (!found) throw InputError(file + ": " + key + ": no joint named '" + name + "'");
+  const Model& m = sub.model();
+  double local[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  auto rotation = [&](const Node& n) {
+    const Eigen::Vector4d qv = s.q.segment<4>(n.first_conf + 3);
+    return Eigen::Quaterniond(qv[0], qv[1], qv[2], qv[3]).normalized().toRotationMatrix();
+  };
+  for (const auto& c : m.constraints()) {
+    if (c->name() != name) continue;
+    const auto& j = static_cast<const SpatialJoint&>(*c);
+    Eigen::Vector3d w = Eigen::Vector3d::Zero(), axis, point;
+    for (size_t k = 0; k < c->nodes().size(); ++k) {
+      const Node& n = m.node(c->nodes()[k]);
+      const Eigen::Matrix3d R = rotation(n);
+      w += (k == 0 ? 1.0 : -1.0) * (R * s.v.segment<3>(n.first_dof + 3));
+    }
+    const SpatialMarker& a = j.marker_a();
+    if (a.slot >= 0) {
+      const Node& n = m.node(c->nodes()[static_cast<size_t>(a.slot)]);
+      const Eigen::Matrix3d R = rotation(n);
+      axis = R * a.rotation.col(2);
+      point = s.q.segment<3>(n.first_conf) + R * a.position;
+    } else {
+      axis = a.rotation.col(2);
+      point = a.position;
+    }
+    for (int d = 0; d < 3; ++d) local[d] = w[d], local[3 + d] = axis[d], local[6 + d] = point[d];
+  }
+  double all[9];
+  MPI_Allreduce(local, all, 9, MPI_DOUBLE, MPI_SUM, sub.comm());
+  JointFrame f;
+  for (int d = 0; d < 3; ++d) f.spin[d] = all[d], f.axis[d] = all[3 + d], f.point[d] = all[6 + d];
+  return f;
+}
+
+void write_campbell_csv(const std::string& path, const std::vector<double>& speeds,
+                        const std::vector<ModalResult>& results) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot write the Campbell table");
+  out << "speed_rad_s,speed_hz,mode,kind,frequency_hz,natural_frequency_hz,damping_ratio,whirl,dominant_part\n"
+      << std::setprecision(17);
+  for (size_t i = 0; i < speeds.size(); ++i)
+    for (size_t k = 0; k < results[i].modes.size(); ++k) {
+      const Mode& m = results[i].modes[k];
+      out << speeds[i] << "," << speeds[i] / 6.283185307179586 << "," << k + 1 << "," << to_string(m.kind) << ","
+          << m.frequency << "," << m.natural_frequency << "," << m.damping_ratio << "," << m.whirl << ","
+          << (m.dominant_part >= 0 ? results[i].parts[static_cast<size_t>(m.dominant_part)] : "") << "\n";
+    }
+  if (!out) throw InputError(path + ": write failed");
+}
+
+/// The chart of a Campbell table by scripts/campbell_plot.py (rank 0): its path, or empty with a
+/// warning when Debian's python3 or the script is missing or fails (the CSV is written anyway).
+std::string draw_campbell(const std::string& csv, std::vector<std::string>& warnings) {
+  const std::string python = "/usr/bin/python3", script = std::string(ALPHAFLEX_SOURCE_DIR) + "/scripts/campbell_plot.py";
+  std::error_code ec;
+  if (!std::filesystem::exists(python, ec) || !std::filesystem::is_regular_file(script, ec)) {
+    warnings.push_back("no Campbell chart: " + python + " or " + script + " is missing (the CSV is written)");
+    return "";
+  }
+  auto quote = [](const std::string& t) {
+    std::string q = "'";
+    for (char c : t) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  const std::string cmd = quote(python) + " " + quote(script) + " " + quote(csv) + " > /dev/null";
+  std::cout.flush();
+  if (std::system(cmd.c_str()) != 0) {
+    warnings.push_back("no Campbell chart: " + cmd + " failed (the CSV is written)");
+    return "";
+  }
+  return csv.substr(0, csv.size() - 4) + ".png";
+}
+
+/// Runs `write` on rank 0; an InputError there is thrown on every rank.
+template <class F>
+void on_rank0(MPI_Comm comm, F write) {
+  int rank = 0, ok = 1;
+  MPI_Comm_rank(comm, &rank);
+  std::string err;
+  if (rank == 0) {
+    try {
+      write();
+    } catch (const InputError& e) {
+      ok = 0;
+      err = e.what();
+    }
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
+  if (!ok) throw InputError(broadcast_text(err, comm));
+}
+
 ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& opt, MPI_Comm comm) {
   const double wall0 = MPI_Wtime();
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
   const RunSettings& rs = scene.settings;
   o.sub = std::make_unique<Subdomain>(*scene.model, comm);
   Subdomain& sub = *o.sub;
@@ -108,8 +218,48 @@ ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& o
   }
   sum.time = s.t;
 
+  ModalOptions mo = opt.modes;
+  if (!mo.campbell_driver.empty()) {
+    // The Campbell diagram: at each speed, the relative equilibrium of the structure turning about
+    // the driver joint's axis (constructed directly: docs/modes.md says why), its modes in the
+    // frame turning with it.
+    for (const auto& c : sub.global_model().constraints())
+      if (c->name() == mo.campbell_driver && std::string(c->type()) != "revolute")
+        throw InputError(scene.file + ": modes.campbell.driver: joint '" + mo.campbell_driver + "' is a " + c->type() +
+                         "; expected a revolute joint (the structure turns about its axis)");
+    const JointFrame jf = joint_frame(sub, s, mo.campbell_driver, "modes.campbell.driver", scene.file);
+    const double t0 = MPI_Wtime();
+    for (double speed : mo.campbell_speeds) {
+      const Eigen::Vector3d spin = speed * jf.axis;
+      const MechanicalState steady = steady_rotation(*o.system, s, rs.load_factor, spin, jf.point);
+      mo.frame_spin = spin;
+      sum.campbell_speeds.push_back(speed);
+      sum.campbell.push_back(compute_modes(*o.system, steady, rs.load_factor, mo));
+    }
+    sum.solve_wall = MPI_Wtime() - t0;
+    sum.result = sum.campbell.back();
+    sum.frame = "steady rotation about joint " + mo.campbell_driver + " (rotating frame), " +
+                std::to_string(mo.campbell_speeds.size()) + " speeds";
+    if (opt.write_results) {
+      std::error_code ec;
+      std::filesystem::create_directories(opt.outdir, ec);
+      sum.campbell_csv = (std::filesystem::path(opt.outdir) / (scene.name + "_campbell.csv")).string();
+      on_rank0(comm, [&] {
+        write_campbell_csv(sum.campbell_csv, sum.campbell_speeds, sum.campbell);
+        sum.campbell_chart = draw_campbell(sum.campbell_csv, sum.result.warnings);
+      });
+    }
+    sum.wall = MPI_Wtime() - wall0;
+    return sum;
+  }
+  if (!mo.rotating_frame.empty()) {
+    mo.frame_spin = joint_frame(sub, s, mo.rotating_frame, "modes.rotating_frame", scene.file).spin;
+    std::ostringstream os;
+    os << "frame turning with joint " << mo.rotating_frame << " at |Omega| = " << mo.frame_spin.norm() << " rad/s";
+    sum.frame = os.str();
+  }
   const double t0 = MPI_Wtime();
-  sum.result = compute_modes(*o.system, s, rs.load_factor, opt.modes);
+  sum.result = compute_modes(*o.system, s, rs.load_factor, mo);
   sum.solve_wall = MPI_Wtime() - t0;
 
   if (opt.write_results) {
@@ -135,18 +285,7 @@ ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& o
       sum.xdmf = o.writer->xdmf_path();
     }
     sum.csv = (std::filesystem::path(opt.outdir) / (scene.name + "_modes.csv")).string();
-    int ok = 1;
-    std::string err;
-    if (rank == 0) {
-      try {
-        write_csv(sum.csv, sum.result);
-      } catch (const InputError& e) {
-        ok = 0;
-        err = e.what();
-      }
-    }
-    MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
-    if (!ok) throw InputError(broadcast_text(err, comm));
+    on_rank0(comm, [&] { write_csv(sum.csv, sum.result); });
   }
   sum.wall = MPI_Wtime() - wall0;
   return sum;
@@ -162,8 +301,23 @@ ModalRunSummary run_modes(Scene& scene, const ModalRunOptions& opt, MPI_Comm com
 std::string format_modes(const Scene& scene, const ModalRunSummary& s) {
   const ModalResult& r = s.result;
   std::ostringstream os;
+  if (!s.campbell.empty()) {
+    os << "Campbell diagram of " << scene.name << ": " << s.frame << ", from the " << s.state << " on " << s.ranks
+       << " rank(s)\n  speed (rad/s)  frequencies (Hz), whirl (f forward, b backward)\n";
+    for (size_t i = 0; i < s.campbell.size(); ++i) {
+      os << "  " << std::setw(13) << std::setprecision(6) << s.campbell_speeds[i] << " ";
+      for (const Mode& m : s.campbell[i].modes)
+        os << " " << std::setprecision(8) << m.frequency << (m.whirl.empty() ? "" : m.whirl == "forward" ? "f" : "b");
+      os << "\n";
+    }
+    os << "  " << std::setprecision(3) << s.solve_wall << " s (whole command " << s.wall << " s)\n";
+    for (const auto& w : r.warnings) os << "  warning: " << w << "\n";
+    if (!s.campbell_csv.empty()) os << "  table: " << s.campbell_csv << "\n";
+    if (!s.campbell_chart.empty()) os << "  chart: " << s.campbell_chart << "\n";
+    return os.str();
+  }
   os << "modes of " << scene.name << " about the " << s.state << " (t = " << s.time << " s, load factor "
-     << s.load_factor << "): " << (r.damped ? "damped/gyroscopic (quadratic) problem" : "undamped problem") << ", "
+     << s.load_factor << (s.frame.empty() ? "" : "; " + s.frame) << "): " << (r.damped ? "damped/gyroscopic (quadratic) problem" : "undamped problem") << ", "
      << s.unknowns << " unknowns (" << s.coordinates << " coordinates, " << s.multipliers << " joint equations) on "
      << s.ranks << " rank(s)\n";
   for (const auto& w : r.warnings) os << "  warning: " << w << "\n";

@@ -39,10 +39,22 @@ ModalOptions read_modal_options(const std::string& path, const std::vector<std::
   ModalOptions opt;
   const YAML::Node m = root["modes"];
   if (!m) return opt;
-  rd.keys(m, "modes", {"count", "below", "shift"});
+  rd.keys(m, "modes", {"count", "below", "shift", "rotating_frame", "campbell"});
   if (m["count"]) opt.count = rd.integer(m["count"], "modes.count", 1, 100000);
   if (m["below"]) opt.below = rd.positive(m["below"], "modes.below", "frequency (Hz)");
   if (m["shift"]) opt.shift = rd.non_negative(m["shift"], "modes.shift", "frequency (Hz)");
+  if (m["rotating_frame"]) opt.rotating_frame = rd.text(m["rotating_frame"], "modes.rotating_frame");
+  if (const YAML::Node c = m["campbell"]) {
+    rd.keys(c, "modes.campbell", {"driver", "speeds"});
+    opt.campbell_driver = rd.text(rd.need(c, "driver", "modes.campbell"), "modes.campbell.driver");
+    const YAML::Node sp = rd.need(c, "speeds", "modes.campbell");
+    if (!sp.IsSequence() || sp.size() == 0)
+      rd.fail(sp, "modes.campbell.speeds", "expected a list of speeds (rad/s), e.g. [0, 50, 100]");
+    for (size_t i = 0; i < sp.size(); ++i)
+      opt.campbell_speeds.push_back(
+          rd.non_negative(sp[i], "modes.campbell.speeds[" + std::to_string(i) + "]", "speed (rad/s)"));
+    if (opt.shift > 0.0) rd.fail(m["shift"], "modes.shift", "not with modes.campbell (the rotating frame's problem is gyroscopic)");
+  }
   return opt;
 }
 

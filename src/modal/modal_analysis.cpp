@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/rotation.hpp"
 #include "alphaflex/integrators/linearized_system.hpp"
 
 namespace alphaflex {
@@ -69,55 +70,71 @@ void build_pencil(SaddlePointSystem& system, const MechanicalState& s, double lo
 
 double global_max(double v, MPI_Comm comm);
 
-/// The velocity kinematics of the group nodes. With q = q̄ ∘ exp(δ) on a frame (rotation R̄ exp(δθ^),
-/// body angular velocity Ω), Ω = exp(−δθ^) Ω̄ + T(δθ) δθ̇ = Ω̄ + Ω̄ × δθ + δθ̇ + O(δ²): the
-/// perturbation of the velocity is δv = δ̇ + G δ and of the acceleration δv̇ = δ̈ + G δ̇ + Ġ δ, with
-/// G = blockdiag(0, Ω̄^) per frame node (0 on translations, which are additive, and on vector-space
-/// nodes). Substituted into M δv̇ + C δv + K δ: M δ̈ + (C + M G) δ̇ + (K + C G + M Ġ) δ. The first
-/// product is the gyroscopic matrix of the Lie-group formulation that the Newton matrix (which
-/// only needs the tangent at fixed v) leaves out. Returns false (nothing to add) when no frame
-/// turns.
-bool add_group_kinematics(const Subdomain& sub, const MechanicalState& s, Pencil& p) {
+/// The velocity kinematics of the perturbation, δv = δ̇ + G δ and δv̇ = δ̈ + G_a δ̇ + H δ, per node
+/// (docs/theory/modes.md), substituted into M δv̇ + C δv + K δ:
+///   M δ̈ + (C + M G_a) δ̇ + (K + C G + M H) δ.
+/// Rotations of a frame node (body frame, R = R̄ exp(δθ^), body angular velocity Ω̄):
+/// Ω = exp(−δθ^) Ω̄ + T(δθ) δθ̇ = Ω̄ + Ω̄ × δθ + δθ̇ + O(δ²), so G = G_a = Ω̄^, H = (dΩ̄/dt)^.
+/// Translations (world frame) are additive: G = G_a = H = 0 in the inertial frame. In a frame
+/// turning at the constant spin ω_f (world), x = x̄ + R_f(t) η with Ṙ_f = ω_f^ R_f and R_f = I at the
+/// state: δẋ = η̇ + ω_f^ η and δẍ = η̈ + 2 ω_f^ η̇ + ω_f^ ω_f^ η, so G = ω_f^, G_a = 2 ω_f^ (Coriolis)
+/// and H = ω_f^ ω_f^ = −|ω_f|² P_⊥ (centrifugal softening); the body-frame rotations are already
+/// co-rotating. M G_a is the gyroscopic (Coriolis) matrix that the Newton matrix of the integrator
+/// (the tangent at fixed v) leaves out. Returns false (nothing added) when nothing turns.
+bool add_group_kinematics(const Subdomain& sub, const MechanicalState& s, const Eigen::Vector3d& frame_spin,
+                          Pencil& p) {
   const Model& m = sub.model();
-  std::vector<std::pair<int, Eigen::Vector3d>> omega, omega_dot;  // PETSc index of the first rotation dof
-  double largest = 0.0;
+  struct Block {
+    int row;
+    Eigen::Matrix3d g, ga, h;
+  };
+  std::vector<Block> blocks;
+  const Eigen::Matrix3d wf = hat<double>(frame_spin);
+  const bool rotating = frame_spin.squaredNorm() > 0.0;
+  double largest = frame_spin.norm();
+  std::string not_frame;
   for (int nd = 0; nd < sub.num_owned_nodes(); ++nd) {
     const Node& n = m.node(nd);
-    if (n.kind != NodeKind::Frame3D) continue;
-    const int row = sub.dof_indices()[static_cast<size_t>(n.first_dof + 3)];
-    omega.emplace_back(row, s.v.segment<3>(n.first_dof + 3));
-    omega_dot.emplace_back(row, s.qdd.segment<3>(n.first_dof + 3));
-    largest = std::max({largest, omega.back().second.norm(), omega_dot.back().second.norm()});
+    if (n.kind != NodeKind::Frame3D) {
+      if (rotating && not_frame.empty()) not_frame = n.name;
+      continue;
+    }
+    const int row = sub.dof_indices()[static_cast<size_t>(n.first_dof)];
+    const Eigen::Vector3d w = s.v.segment<3>(n.first_dof + 3), wdot = s.qdd.segment<3>(n.first_dof + 3);
+    if (rotating) blocks.push_back({row, wf, 2.0 * wf, wf * wf});
+    blocks.push_back({row + 3, hat<double>(w), hat<double>(w), hat<double>(wdot)});
+    largest = std::max({largest, w.norm(), wdot.norm()});
   }
+  const std::string bad = sub.first_error(not_frame.empty() ? "" : "node '" + not_frame + "'");
+  if (!bad.empty())
+    throw InputError("modes.rotating_frame: " + bad +
+                     " is not a 3D frame node; the rotating-frame linearization is for 3D models (beams, shells, "
+                     "rigid bodies)");
   if (global_max(largest, sub.comm()) == 0.0) return false;
   PetscInt rows = 0, cols = 0;
   check_petsc(MatGetLocalSize(p.K, &rows, &cols), "local size");
-  auto skew_blocks = [&](const std::vector<std::pair<int, Eigen::Vector3d>>& w, Mat* out) {
+  auto block_matrix = [&](Eigen::Matrix3d Block::*which, Mat* out) {
     check_petsc(MatCreateAIJ(sub.comm(), rows, cols, PETSC_DETERMINE, PETSC_DETERMINE, 3, nullptr, 0, nullptr, out),
                 "MatCreateAIJ");
-    for (const auto& [row, v] : w) {
-      // ŵ (row-major): ŵ δ = w × δ.
-      const PetscScalar hat[9] = {0.0, -v[2], v[1], v[2], 0.0, -v[0], -v[1], v[0], 0.0};
-      const PetscInt idx[3] = {row, row + 1, row + 2};
-      check_petsc(MatSetValues(*out, 3, idx, 3, idx, hat, INSERT_VALUES), "MatSetValues");
+    for (const Block& b : blocks) {
+      const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> a = b.*which;
+      const PetscInt idx[3] = {b.row, b.row + 1, b.row + 2};
+      check_petsc(MatSetValues(*out, 3, idx, 3, idx, a.data(), INSERT_VALUES), "MatSetValues");
     }
     check_petsc(MatAssemblyBegin(*out, MAT_FINAL_ASSEMBLY), "assembly");
     check_petsc(MatAssemblyEnd(*out, MAT_FINAL_ASSEMBLY), "assembly");
   };
-  Mat G = nullptr, Gdot = nullptr, MG = nullptr, CG = nullptr, MGdot = nullptr;
-  skew_blocks(omega, &G);
-  skew_blocks(omega_dot, &Gdot);
-  check_petsc(MatMatMult(p.M, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &MG), "M G");
+  Mat G = nullptr, Ga = nullptr, H = nullptr, MGa = nullptr, CG = nullptr, MH = nullptr;
+  block_matrix(&Block::g, &G);
+  block_matrix(&Block::ga, &Ga);
+  block_matrix(&Block::h, &H);
+  check_petsc(MatMatMult(p.M, Ga, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &MGa), "M G_a");
   check_petsc(MatMatMult(p.C, G, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &CG), "C G");
-  check_petsc(MatMatMult(p.M, Gdot, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &MGdot), "M Gdot");
+  check_petsc(MatMatMult(p.M, H, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &MH), "M H");
   check_petsc(MatAXPY(p.K, 1.0, CG, DIFFERENT_NONZERO_PATTERN), "K + C G");
-  check_petsc(MatAXPY(p.K, 1.0, MGdot, DIFFERENT_NONZERO_PATTERN), "K + M Gdot");
-  check_petsc(MatAXPY(p.C, 1.0, MG, DIFFERENT_NONZERO_PATTERN), "C + M G");
-  MatDestroy(&G);
-  MatDestroy(&Gdot);
-  MatDestroy(&MG);
-  MatDestroy(&CG);
-  MatDestroy(&MGdot);
+  check_petsc(MatAXPY(p.K, 1.0, MH, DIFFERENT_NONZERO_PATTERN), "K + M H");
+  check_petsc(MatAXPY(p.C, 1.0, MGa, DIFFERENT_NONZERO_PATTERN), "C + M G_a");
+  for (Mat* x : {&G, &Ga, &H, &MGa, &CG, &MH}) MatDestroy(x);
   return true;
 }
 
@@ -503,7 +520,7 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
   Pencil p;
   build_pencil(system, state, load_factor, p);
   res.spectral_scale = check_and_scale(system, p);
-  add_group_kinematics(sub, state, p);
+  add_group_kinematics(sub, state, options.frame_spin, p);
   PetscReal nk = 0.0, nm = 0.0, nc = 0.0;
   check_petsc(MatNorm(p.K, NORM_INFINITY, &nk), "norm");
   check_petsc(MatNorm(p.M, NORM_INFINITY, &nm), "norm");
@@ -641,6 +658,79 @@ ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& stat
                              std::to_string(options.below) + " Hz: there may be more (raise modes.count)");
   }
   return res;
+}
+
+namespace {
+
+/// v and v̇ of every frame node of the local model moving rigidly with the rotation `spin` about the
+/// axis through `point`: v = (Ω × (x − p), Rᵀ Ω), v̇ = (Ω × (Ω × (x − p)), 0).
+void set_rigid_rotation(const Model& m, const Eigen::Vector3d& spin, const Eigen::Vector3d& point, MechanicalState& s) {
+  for (const Node& n : m.nodes()) {
+    if (n.kind != NodeKind::Frame3D) continue;
+    const Eigen::Vector3d r = s.q.segment<3>(n.first_conf) - point;
+    const Eigen::Vector4d qv = s.q.segment<4>(n.first_conf + 3);
+    const Eigen::Matrix3d R = Eigen::Quaterniond(qv[0], qv[1], qv[2], qv[3]).normalized().toRotationMatrix();
+    s.v.segment<3>(n.first_dof) = spin.cross(r);
+    s.v.segment<3>(n.first_dof + 3) = R.transpose() * spin;
+    s.qdd.segment<3>(n.first_dof) = spin.cross(spin.cross(r));
+    s.qdd.segment<3>(n.first_dof + 3).setZero();
+  }
+}
+
+}  // namespace
+
+MechanicalState steady_rotation(SaddlePointSystem& system, const MechanicalState& state, double load_factor,
+                                const Eigen::Vector3d& spin, const Eigen::Vector3d& point) {
+  const Subdomain& sub = system.subdomain();
+  const Model& m = system.model();
+  MechanicalState s = state;
+  const double size = std::max(model_size(sub, s), 1e-300);
+  constexpr int kMaxIterations = 30;
+  double step = 0.0;
+  for (int it = 0; it < kMaxIterations; ++it) {
+    set_rigid_rotation(m, spin, point, s);
+    // The residual at the rigidly turning state, and its Jacobian with v(q), v̇(q): K + C G + M H
+    // with the rotating-frame G, H of add_group_kinematics (δv = G δ, δv̇ = H δ at fixed η̇ = 0).
+    Pencil p;
+    build_pencil(system, s, load_factor, p);
+    add_group_kinematics(sub, s, spin, p);
+    Vec rhs = nullptr, x = nullptr;
+    KSP ksp = nullptr;
+    PC pc = nullptr;
+    check_petsc(VecDuplicate(system.residual(), &rhs), "vectors");
+    check_petsc(VecCopy(system.residual(), rhs), "copy");
+    check_petsc(VecScale(rhs, -1.0), "scale");
+    check_petsc(VecDuplicate(rhs, &x), "vectors");
+    check_petsc(KSPCreate(sub.comm(), &ksp), "KSPCreate");
+    check_petsc(KSPSetOperators(ksp, p.K, p.K), "KSPSetOperators");
+    check_petsc(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+    check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
+    check_petsc(PCSetType(pc, PCLU), "PCSetType");
+    check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    const PetscErrorCode ierr = KSPSolve(ksp, rhs, x);
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    if (!ierr) KSPGetConvergedReason(ksp, &reason);
+    ModelVector dx;
+    if (!ierr && reason >= 0) check_petsc(system.to_model(x, dx), "gather");
+    KSPDestroy(&ksp);
+    VecDestroy(&rhs);
+    VecDestroy(&x);
+    if (ierr || reason < 0)
+      throw SolverError("modes: steady rotation at |Ω| = " + std::to_string(spin.norm()) +
+                        " rad/s: the rotating-frame stiffness is singular (a buckled or unrestrained state: is the "
+                        "speed above a divergence speed, or does a joint leave the structure free?)");
+    m.retract(s.q, dx.dofs);
+    s.lambda += dx.multipliers;
+    step = sub.max_abs(dx.dofs);
+    if (step <= 1e-12 * size) {
+      set_rigid_rotation(m, spin, point, s);
+      return s;
+    }
+  }
+  std::ostringstream os;
+  os << "modes: the steady rotation at |Ω| = " << spin.norm() << " rad/s did not converge in " << kMaxIterations
+     << " Newton iterations (last correction " << step << " against a model size " << size << " m)";
+  throw SolverError(os.str());
 }
 
 MechanicalState displaced_state(const Model& model, const MechanicalState& state, const Mode& mode, double amplitude,

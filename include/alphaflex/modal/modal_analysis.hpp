@@ -27,6 +27,15 @@ struct ModalOptions {
   int count = 0;        ///< how many modes (the lowest, or the nearest the shift); 0: 10, or all if fewer
   double below = 0.0;   ///< Hz; > 0: report only the modes below this frequency
   double shift = 0.0;   ///< Hz; > 0: the modes nearest this frequency (undamped problems)
+  /// `modes.rotating_frame`: the joint whose first body turns the reference frame (empty: the
+  /// inertial frame). The app resolves it into `frame_spin`.
+  std::string rotating_frame;
+  /// `modes.campbell`: the driven joint and the speeds (rad/s) of a Campbell diagram.
+  std::string campbell_driver;
+  std::vector<double> campbell_speeds;
+  /// rad/s, world frame: the spin of the reference frame the linearization is taken in (steady
+  /// rotation about a fixed axis, docs/theory/modes.md "Rotating frame"); zero: the inertial frame.
+  Eigen::Vector3d frame_spin = Eigen::Vector3d::Zero();
 };
 
 enum class ModeKind {
@@ -76,6 +85,15 @@ struct ModalResult {
 /// (no convergence: the modes that did converge are listed).
 ModalResult compute_modes(SaddlePointSystem& system, const MechanicalState& state, double load_factor,
                           const ModalOptions& options);
+
+/// The relative equilibrium of the model turning as a whole at the angular velocity `spin` (rad/s,
+/// world) about the axis through `point`: q and λ such that the residual vanishes with every frame
+/// node moving rigidly with the rotation (v = (Ω × (x − p), Rᵀ Ω), v̇ = (Ω × (Ω × (x − p)), 0)),
+/// the joints' equations at the state's time. Newton's method on the rotating-frame stiffness of
+/// compute_modes (the Jacobian of that residual, docs/theory/modes.md), from `state`. Collective;
+/// throws SolverError when it does not converge.
+MechanicalState steady_rotation(SaddlePointSystem& system, const MechanicalState& state, double load_factor,
+                                const Eigen::Vector3d& spin, const Eigen::Vector3d& point);
 
 /// The state q ∘ exp(a·(x_re cos φ − x_im sin φ)) of the local model: mode shapes animated on the
 /// model itself (the results writer draws it like any state).
