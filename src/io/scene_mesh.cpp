@@ -17,11 +17,75 @@
 namespace alphaflex::scene_detail {
 namespace {
 
+// Key schemas of the mesh sections (docs/input.md, generated tables).
+const Schema kBeamMaterial{"beams.section.material", {
+    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus; positive"},
+    {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio (G = E/(2(1 + ν)))"},
+    {"rho", KeyType::Number, "kg/m³", kRequired, "density; positive"},
+    {"shape", KeyType::Choice, "–", kRequired, "cross-section shape", {}, "", "", {"rectangle", "circle", "tube"}},
+    {"width", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 2; positive"},
+    {"height", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 3; positive"},
+    {"diameter", KeyType::Number, "m", "– (**required** for `circle`, `tube`)", "outer diameter; positive"},
+    {"wall_thickness", KeyType::Number, "m", "– (**required** for `tube`)", "positive, at most the radius"}}};
+const Schema kBeamProperties{"beams.section.properties", {
+    {"EA", KeyType::Number, "N", kRequired, "axial stiffness; positive"},
+    {"GA2", KeyType::Number, "N", kRequired, "shear stiffness along axis 2; positive"},
+    {"GA3", KeyType::Number, "N", kRequired, "shear stiffness along axis 3; positive"},
+    {"GJ", KeyType::Number, "N·m²", kRequired, "torsional stiffness; positive"},
+    {"EI2", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 2; positive"},
+    {"EI3", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 3; positive"},
+    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length; positive"},
+    {"rhoI2", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 2; positive"},
+    {"rhoI3", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 3; positive"},
+    {"rhoI_polar", KeyType::Number, "kg·m", "rhoI2 + rhoI3", "polar mass moment per length; positive"}}};
+const Schema kPlanarSection{"beams.2d.section", {
+    {"EA", KeyType::Number, "N", kRequired, "axial stiffness; positive"},
+    {"GA", KeyType::Number, "N", kRequired, "in-plane shear stiffness; positive"},
+    {"EI", KeyType::Number, "N·m²", kRequired, "bending stiffness in the plane; positive"},
+    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length; positive"},
+    {"rhoI", KeyType::Number, "kg·m", kRequired, "rotary inertia per length; positive"}}};
+const Schema kMesh{"mesh", {
+    {"file", KeyType::Text, "–", kRequired, "a .geo or .msh, relative to the scene file's directory"},
+    {"elements", KeyType::Integer, "–", "the .geo's own", "every curve of a .geo meshed with this many equal elements (not with `element_size`; not for .msh)", Range::closed(1, 10000000)},
+    {"element_size", KeyType::Number, "m", "the .geo's own", "largest element length of a .geo", Range::positive(), "element size (m)"},
+    {"parameters", KeyType::Map, "as the .geo says", "the .geo's defaults", "values of the .geo's `DefineConstant[ x = {v, Name \"x\"} ]`"}}};
+const Schema kBeams3d{"beams.3d", {
+    {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in mesh order"},
+    {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh, used by one beam only"},
+    {"section", KeyType::Map, "–", kRequired, "`beams.section.material` or `beams.section.properties`"},
+    {"orientation", KeyType::Vec3, "–", kRequired, "direction of the section's axis 2 (projected ⊥ to each element); not parallel to an element"}}};
+const Schema kBeams2d{"beams.2d", {
+    {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in mesh order"},
+    {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh (in the x-y plane), used by one beam only"},
+    {"section", KeyType::Map, "–", kRequired, "`beams.2d.section` or `beams.section.material`"}}};
+const Schema kShells{"shells", {
+    {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in the group's element order"},
+    {"group", KeyType::Text, "–", kRequired, "a physical surface group, used by one beam or shell block only"},
+    {"thickness", KeyType::Number, "m", "**required** (unless `section`)", "positive"},
+    {"material", KeyType::Map, "Pa, –, kg/m³", "**required** (unless `section`)", "`{E, nu, rho}`: isotropic, E > 0, −1 < ν < 0.5, ρ ≥ 0"},
+    {"section", KeyType::Map, "–", "–", "a laminate instead of `thickness` and `material` (`shells.section`)"},
+    {"material_axis", KeyType::Vec3, "–", "[1, 0, 0]", "material axis 1, projected onto each element"},
+    {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area"},
+    {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there"}}};
+const Schema kShellMaterial{"shells.material", {
+    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus; positive"},
+    {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio; −1 < ν < 0.5"},
+    {"rho", KeyType::Number, "kg/m³", kRequired, "density; ≥ 0"}}};
+const Schema kShellLaminate{"shells.section", {
+    {"A", KeyType::List, "N/m", kRequired, "membrane stiffness, 3×3 rows, Voigt order (11, 22, 12)", {}, "", "3×3 list of rows"},
+    {"B", KeyType::List, "N", "zero", "membrane–bending coupling, 3×3 rows", {}, "", "3×3 list of rows"},
+    {"D", KeyType::List, "N·m", kRequired, "bending stiffness, 3×3 rows", {}, "", "3×3 list of rows"},
+    {"As", KeyType::List, "N/m", kRequired, "transverse shear stiffness, 2×2 rows", {}, "", "2×2 list of rows"},
+    {"thickness", KeyType::Number, "m", kRequired, "positive"},
+    {"mass", KeyType::Number, "kg/m²", kRequired, "mass per area"},
+    {"rotary", KeyType::Number, "kg", kRequired, "rotary inertia per area"}}};
+
+
 BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key) {
   if (!n.IsMap()) rd.fail(n, key, "expected a map of section properties");
   try {
     if (n["E"] || n["shape"]) {
-      rd.keys(n, key, {"E", "nu", "rho", "shape", "width", "height", "diameter", "wall_thickness"});
+      rd.keys(n, key, kBeamMaterial);
       const double E = rd.positive(rd.need(n, "E", key), key + ".E", "Young's modulus (Pa)");
       const double nu = rd.number(rd.need(n, "nu", key), key + ".nu");
       const double rho = rd.positive(rd.need(n, "rho", key), key + ".rho", "density (kg/m^3)");
@@ -40,7 +104,7 @@ BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key
       }
       return BeamSection::from_material(E, nu, rho, s);
     }
-    rd.keys(n, key, {"EA", "GA2", "GA3", "GJ", "EI2", "EI3", "rhoA", "rhoI2", "rhoI3", "rhoI_polar"});
+    rd.keys(n, key, kBeamProperties);
     auto v = [&](const char* k, const char* what) { return rd.positive(rd.need(n, k, key), key + "." + k, what); };
     std::optional<double> polar;
     if (n["rhoI_polar"]) polar = rd.positive(n["rhoI_polar"], key + ".rhoI_polar", "polar mass moment per length (kg m)");
@@ -56,7 +120,7 @@ BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key
 
 /// Reads `mesh` (path relative to the scene file) with the scene's options.
 MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
-  rd.keys(mn, "mesh", {"file", "elements", "element_size", "parameters"});
+  rd.keys(mn, "mesh", kMesh);
   const YAML::Node fn = rd.need(mn, "file", "mesh");
   const std::string given = rd.text(fn, "mesh.file");
   // Relative to the scene file's directory (inputs/x.yaml names ../meshes/y.geo).
@@ -127,7 +191,7 @@ ShellSection read_shell_section(Reader& rd, const YAML::Node& s, const std::stri
         rd.fail(sec, path + ".section", "give either thickness and material, or a laminate section (with its own thickness)");
       const std::string key = path + ".section";
       if (!sec.IsMap()) rd.fail(sec, key, "expected a map {A, B, D, As, thickness, mass, rotary}");
-      rd.keys(sec, key, {"A", "B", "D", "As", "thickness", "mass", "rotary"});
+      rd.keys(sec, key, kShellLaminate);
       const Eigen::Matrix3d A = matrix(sec["A"], key + ".A", 3, "N/m");
       const Eigen::Matrix3d B = sec["B"] ? Eigen::Matrix3d(matrix(sec["B"], key + ".B", 3, "N")) : Eigen::Matrix3d::Zero();
       const Eigen::Matrix3d D = matrix(sec["D"], key + ".D", 3, "N m");
@@ -140,7 +204,7 @@ ShellSection read_shell_section(Reader& rd, const YAML::Node& s, const std::stri
     const double t = rd.positive(rd.need(s, "thickness", path), path + ".thickness", "thickness (m)");
     const YAML::Node m = rd.need(s, "material", path);
     if (!m.IsMap()) rd.fail(m, path + ".material", "expected a map {E, nu, rho}");
-    rd.keys(m, path + ".material", {"E", "nu", "rho"});
+    rd.keys(m, path + ".material", kShellMaterial);
     const double E = rd.positive(rd.need(m, "E", path + ".material"), path + ".material.E", "Young's modulus (Pa)");
     const double nu = rd.number(rd.need(m, "nu", path + ".material"), path + ".material.nu");
     const double rho = rd.number(rd.need(m, "rho", path + ".material"), path + ".material.rho");
@@ -161,7 +225,7 @@ void read_shells(Reader& rd, const YAML::Node& sl, const MeshData& mesh, Model& 
     const YAML::Node s = sl[i];
     std::string path = "shells[" + std::to_string(i) + "]";
     if (!s.IsMap()) rd.fail(s, path, "expected a map with name, group, thickness, material");
-    rd.keys(s, path, {"name", "group", "thickness", "material", "section", "material_axis", "drilling", "kink_angle"});
+    rd.keys(s, path, kShells);
     const std::string name = rd.text(rd.need(s, "name", path), path + ".name");
     path = "shells[" + name + "]";
     if (!names.insert(name).second) rd.fail(s["name"], path + ".name", "a shell named '" + name + "' exists already");
@@ -296,7 +360,7 @@ void read_mesh_and_beams(Reader& rd, SceneBuilder& sb, const YAML::Node& root, M
     const YAML::Node b = bl[i];
     std::string path_b = "beams[" + std::to_string(i) + "]";
     if (!b.IsMap()) rd.fail(b, path_b, "expected a map with name, group, section, orientation");
-    rd.keys(b, path_b, {"name", "group", "section", "orientation"});
+    rd.keys(b, path_b, kBeams3d);
     const std::string name = rd.text(rd.need(b, "name", path_b), path_b + ".name");
     path_b = "beams[" + name + "]";
     if (!beam_names.insert(name).second) rd.fail(b["name"], path_b + ".name", "a beam named '" + name + "' exists already");
@@ -368,7 +432,7 @@ void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model
     const YAML::Node b = bl[i];
     std::string path_b = "beams[" + std::to_string(i) + "]";
     if (!b.IsMap()) rd.fail(b, path_b, "expected a map with name, group, section");
-    rd.keys(b, path_b, {"name", "group", "section"});
+    rd.keys(b, path_b, kBeams2d);
     const std::string name = rd.text(rd.need(b, "name", path_b), path_b + ".name");
     path_b = "beams[" + name + "]";
     if (!beam_names.insert(name).second) rd.fail(b["name"], path_b + ".name", "a beam named '" + name + "' exists already");
@@ -386,7 +450,7 @@ void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model
     } else {
       const std::string key = path_b + ".section";
       if (!sn.IsMap()) rd.fail(sn, key, "expected a map of section properties");
-      rd.keys(sn, key, {"EA", "GA", "EI", "rhoA", "rhoI"});
+      rd.keys(sn, key, kPlanarSection);
       EA = rd.positive(rd.need(sn, "EA", key), key + ".EA", "axial stiffness (N)");
       GA = rd.positive(rd.need(sn, "GA", key), key + ".GA", "shear stiffness (N)");
       EI = rd.positive(rd.need(sn, "EI", key), key + ".EI", "bending stiffness (N m^2)");
@@ -421,6 +485,10 @@ void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model
     }
   }
   check_named_points(rd, mn, mesh, node_of);
+}
+
+std::vector<const Schema*> mesh_schemas() {
+  return {&kMesh, &kBeams3d, &kBeams2d, &kBeamMaterial, &kBeamProperties, &kPlanarSection, &kShells, &kShellMaterial, &kShellLaminate};
 }
 
 }  // namespace alphaflex::scene_detail
