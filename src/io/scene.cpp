@@ -56,10 +56,10 @@ const Schema& load_schema() {
 
 const Schema& solver_schema() {
   static const Schema s{"solver", {
-      {"analysis", KeyType::Choice, "–", "`dynamic`", "`dynamic` (generalized-α) or `static` (quasi-static load stepping)", {}, "", "", {"dynamic", "static"}},
+      {"analysis", KeyType::Choice, "–", "`dynamic`", "`dynamic` (generalized-α) or `static` (quasi-static load stepping; see [statics](#statics))", {}, "", "", {"dynamic", "static"}},
       {"scheme", KeyType::Choice, "–", "`generalized-alpha`", "time integration scheme", {}, "", "", {"generalized-alpha", "hht", "newmark"}},
       {"rho_inf", KeyType::Number, "–", "0.7 (`generalized-alpha`), 0.9 (`hht`)",
-       "spectral radius at infinity ρ∞; in [0, 1] (in [0.5, 1] for `hht`); for `newmark` it gives the damped Newmark γ = (3 − ρ∞)/(2(1 + ρ∞)), β = 1/(1 + ρ∞)²; not together with explicit parameters"},
+       "spectral radius at infinity ρ∞; in [0, 1] for `generalized-alpha` and `newmark`, in [0.5, 1] for `hht`; for `newmark` it gives the damped Newmark γ = (3 − ρ∞)/(2(1 + ρ∞)), β = 1/(1 + ρ∞)² (first order unless ρ∞ = 1); not together with explicit parameters"},
       {"alpha_m", KeyType::Number, "–", "from ρ∞", "explicit α_m (`generalized-alpha` only; then `alpha_m`, `alpha_f`, `beta`, `gamma` are all required); α_m ≠ 1"},
       {"alpha_f", KeyType::Number, "–", "from ρ∞", "explicit α_f (as above); α_f ≠ 1"},
       {"beta", KeyType::Number, "–", "from ρ∞; 0.25 for `newmark`", "explicit β (`generalized-alpha` with all four, or `newmark` without `rho_inf`); β > 0"},
@@ -67,13 +67,13 @@ const Schema& solver_schema() {
       {"h", KeyType::Number, "s", "1e-3", "time step; at most `t_end`, and t_end/h ≤ 1e10", Range::positive(), "step size (s)"},
       {"t_end", KeyType::Number, "s", "1", "final time (the run starts at t = 0)", Range::positive(), "final time (s)"},
       {"step_cuts", KeyType::Integer, "–", "0",
-       "Newton failure policy: 0 stops at the first failed step; N > 0 retries it with h halved, up to N times in a row, and doubles h again after 4 converged steps",
+       "Newton failure policy of a dynamic run: 0 stops at the first step whose Newton iteration fails (the paper's fixed-step scheme); N > 0 retries such a step from the same state with h halved, up to N times in a row, and doubles h again (up to `h`) after 4 converged steps. The summary counts the cuts and the smallest h. Second order in time holds for constant h only: a run with cuts carries the extra error of the step changes (tests/unit/test_step_cuts.cpp: 3 % of the motion's range on the slider-crank against 1 % with fixed h)",
        Range::closed(0, 30)},
       {"scaling", KeyType::Flag, "–", "on", "scale the iteration matrix (dynamic rows × βh², unknown βh²Δλ; Bottasso, Dopico & Trainelli 2006)"},
-      {"consistent_start", KeyType::Flag, "–", "on", "project the initial positions onto Φ = 0 and the velocities onto Φ_q q̇ + Φ_t = 0 before the first step"},
+      {"consistent_start", KeyType::Flag, "–", "on", "project the initial positions onto Φ = 0 (minimum-norm correction) and the velocities onto Φ_q q̇ + Φ_t = 0 (correction of least kinetic energy) before the first step"},
       {"newton", KeyType::Map, "–", "all defaults", "Newton iteration (`solver.newton`)"},
       {"static", KeyType::Map, "–", "all defaults", "load stepping of a static analysis or of `initial_static` (`solver.static`)"},
-      {"initial_static", KeyType::Flag, "–", "off", "bring the initial state to static equilibrium under the loads at t = 0 before the dynamic run"},
+      {"initial_static", KeyType::Flag, "–", "off", "before the dynamic run, bring the initial state to static equilibrium under the loads at t = 0 (load stepping as `static`); the dynamics then starts from that pre-loaded state at rest"},
   }};
   return s;
 }
@@ -102,17 +102,17 @@ const Schema& newton_schema() {
 
 const Schema& output_schema() {
   static const Schema s{"output", {
-      {"every", KeyType::Integer, "steps", "1", "write the fields to NAME.h5 every N steps (the initial state and the last step always; sensors every step)", Range::closed(1, 1000000)},
+      {"every", KeyType::Integer, "steps", "1", "write the fields to NAME.h5 every N steps. The initial state (t = 0) and the last step are always written. Sensors (NAME.csv) are written every step regardless", Range::closed(1, 1000000)},
       {"hdf5", KeyType::Flag, "–", "on", "write NAME.h5 and NAME.xdmf; with `off` only NAME.csv"},
       {"commit_interval", KeyType::Number, "s (wall time)", "1",
-       "how long a part file of the results stays open before it is committed (0: every output step; docs/running.md)",
+       "how long a part file of the results stays open before it is committed (renamed into place and listed in NAME.h5 and NAME.xdmf; docs/running.md): a run killed at any moment opens in ParaView up to its last commit. 0: every output step. The interval grows to 10 × the last commit's cost, so commits stay under ~10 % of a run; the first output step, checkpoints, the end, a failure and a stop signal always commit",
        Range::non_negative(), "wall-time interval (s; 0: every output step is committed at once)"},
       {"checkpoint_every", KeyType::Text, "steps, or s/min/h", "none",
-       "write NAME.checkpoint.h5 every so many steps (an integer ≥ 1) or so much wall time (`\"600 s\"`, `\"10 min\"`, `\"2 h\"`); a checkpoint is also written at the end, after a Newton failure and on a stop signal",
+       "write NAME.checkpoint.h5 every so many steps (an integer ≥ 1) or so much wall time (`\"600 s\"`, `\"10 min\"`, `\"2 h\"`; dynamic runs); a checkpoint is also written at the end of every run, after a Newton failure (the last converged state) and on a stop signal. `alphaflex run SCENE --restart OUTDIR/NAME.checkpoint.h5 -o OUTDIR` goes on from it (docs/running.md)",
        {}, "", "integer ≥ 1, or a wall time with its unit"},
       {"checkpoint_keep", KeyType::Integer, "–", "1", "how many checkpoints to keep (NAME.checkpoint.h5, NAME.checkpoint.1.h5, …)", Range::closed(1, 1000)},
       {"progress", KeyType::Number, "s (wall time)", "30",
-       "rank 0, on stderr: in batch logs a progress line every this many seconds (0: none); on a terminal a line rewritten in place",
+       "rank 0, on stderr: when stderr is not a terminal (batch logs), a line `progress: t = … s (… %), step … of …, Newton … per step, wall … s, ETA … s` every this many seconds (0: none), `load factor = …` and load steps in a static analysis; on a terminal the same line is rewritten in place 4 times a second and cleared before the summary",
        Range::non_negative(), "wall-time interval (s; 0: no progress lines in batch logs)"},
   }};
   return s;

@@ -19,31 +19,31 @@ namespace {
 
 // Key schemas of the mesh sections (docs/input.md, generated tables).
 const Schema kBeamMaterial{"beams.section.material", {
-    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus; positive"},
-    {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio (G = E/(2(1 + ν)))"},
-    {"rho", KeyType::Number, "kg/m³", kRequired, "density; positive"},
+    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus", Range::positive(), "Young's modulus (Pa)"},
+    {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio (G = E/(2(1 + ν))), in (−1, 0.5)"},
+    {"rho", KeyType::Number, "kg/m³", kRequired, "density", Range::positive(), "density (kg/m^3)"},
     {"shape", KeyType::Choice, "–", kRequired, "cross-section shape", {}, "", "", {"rectangle", "circle", "tube"}},
-    {"width", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 2; positive"},
-    {"height", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 3; positive"},
-    {"diameter", KeyType::Number, "m", "– (**required** for `circle`, `tube`)", "outer diameter; positive"},
-    {"wall_thickness", KeyType::Number, "m", "– (**required** for `tube`)", "positive, at most the radius"}}};
+    {"width", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 2", Range::positive(), "width (m)"},
+    {"height", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 3", Range::positive(), "height (m)"},
+    {"diameter", KeyType::Number, "m", "– (**required** for `circle`, `tube`)", "outer diameter", Range::positive(), "diameter (m)"},
+    {"wall_thickness", KeyType::Number, "m", "– (**required** for `tube`)", "at most the radius", Range::positive(), "wall thickness (m)"}}};
 const Schema kBeamProperties{"beams.section.properties", {
-    {"EA", KeyType::Number, "N", kRequired, "axial stiffness; positive"},
-    {"GA2", KeyType::Number, "N", kRequired, "shear stiffness along axis 2; positive"},
-    {"GA3", KeyType::Number, "N", kRequired, "shear stiffness along axis 3; positive"},
-    {"GJ", KeyType::Number, "N·m²", kRequired, "torsional stiffness; positive"},
-    {"EI2", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 2; positive"},
-    {"EI3", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 3; positive"},
-    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length; positive"},
-    {"rhoI2", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 2; positive"},
-    {"rhoI3", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 3; positive"},
-    {"rhoI_polar", KeyType::Number, "kg·m", "rhoI2 + rhoI3", "polar mass moment per length; positive"}}};
+    {"EA", KeyType::Number, "N", kRequired, "axial stiffness", Range::positive(), "axial stiffness (N)"},
+    {"GA2", KeyType::Number, "N", kRequired, "shear stiffness along axis 2 (shear coefficient included)", Range::positive(), "shear stiffness (N)"},
+    {"GA3", KeyType::Number, "N", kRequired, "shear stiffness along axis 3 (shear coefficient included)", Range::positive(), "shear stiffness (N)"},
+    {"GJ", KeyType::Number, "N·m²", kRequired, "torsional stiffness", Range::positive(), "torsional stiffness (N m^2)"},
+    {"EI2", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 2 (deflection along axis 3)", Range::positive(), "bending stiffness (N m^2)"},
+    {"EI3", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 3", Range::positive(), "bending stiffness (N m^2)"},
+    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length", Range::positive(), "mass per length (kg/m)"},
+    {"rhoI2", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 2", Range::positive(), "mass moment per length (kg m)"},
+    {"rhoI3", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 3", Range::positive(), "mass moment per length (kg m)"},
+    {"rhoI_polar", KeyType::Number, "kg·m", "rhoI2 + rhoI3", "polar mass moment per length", Range::positive(), "polar mass moment per length (kg m)"}}};
 const Schema kPlanarSection{"beams.2d.section", {
-    {"EA", KeyType::Number, "N", kRequired, "axial stiffness; positive"},
-    {"GA", KeyType::Number, "N", kRequired, "in-plane shear stiffness; positive"},
-    {"EI", KeyType::Number, "N·m²", kRequired, "bending stiffness in the plane; positive"},
-    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length; positive"},
-    {"rhoI", KeyType::Number, "kg·m", kRequired, "rotary inertia per length; positive"}}};
+    {"EA", KeyType::Number, "N", kRequired, "axial stiffness", Range::positive(), "axial stiffness (N)"},
+    {"GA", KeyType::Number, "N", kRequired, "in-plane shear stiffness", Range::positive(), "shear stiffness (N)"},
+    {"EI", KeyType::Number, "N·m²", kRequired, "bending stiffness in the plane", Range::positive(), "bending stiffness (N m^2)"},
+    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length", Range::positive(), "mass per length (kg/m)"},
+    {"rhoI", KeyType::Number, "kg·m", kRequired, "rotary inertia per length", Range::positive(), "rotary inertia per length (kg m)"}}};
 const Schema kMesh{"mesh", {
     {"file", KeyType::Text, "–", kRequired, "a .geo or .msh, relative to the scene file's directory"},
     {"elements", KeyType::Integer, "–", "the .geo's own", "every curve of a .geo meshed with this many equal elements (not with `element_size`; not for .msh)", Range::closed(1, 10000000)},
@@ -68,7 +68,7 @@ const Schema kShells{"shells", {
     {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area"},
     {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there"}}};
 const Schema kShellMaterial{"shells.material", {
-    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus; positive"},
+    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus", Range::positive(), "Young's modulus (Pa)"},
     {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio; −1 < ν < 0.5"},
     {"rho", KeyType::Number, "kg/m³", kRequired, "density; ≥ 0"}}};
 const Schema kShellLaminate{"shells.section", {
@@ -85,34 +85,26 @@ BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key
   if (!n.IsMap()) rd.fail(n, key, "expected a map of section properties");
   try {
     if (n["E"] || n["shape"]) {
-      rd.keys(n, key, kBeamMaterial);
-      const double E = rd.positive(rd.need(n, "E", key), key + ".E", "Young's modulus (Pa)");
-      const double nu = rd.number(rd.need(n, "nu", key), key + ".nu");
-      const double rho = rd.positive(rd.need(n, "rho", key), key + ".rho", "density (kg/m^3)");
-      const std::string shape = rd.text(rd.need(n, "shape", key), key + ".shape");
+      const Section m(rd, n, key, kBeamMaterial);
+      // Keys a shape requires (the schema marks them required only for that shape).
+      auto shape_key = [&](const char* k) {
+        rd.need(n, k, key);
+        return m.number(k);
+      };
+      const double E = m.number("E"), nu = m.number("nu"), rho = m.number("rho");
       SectionShape s;
-      if (shape == "rectangle") {
-        s = SectionShape::rectangle(rd.positive(rd.need(n, "width", key), key + ".width", "width (m)"),
-                                    rd.positive(rd.need(n, "height", key), key + ".height", "height (m)"));
-      } else if (shape == "circle") {
-        s = SectionShape::circle(rd.positive(rd.need(n, "diameter", key), key + ".diameter", "diameter (m)"));
-      } else if (shape == "tube") {
-        s = SectionShape::tube(rd.positive(rd.need(n, "diameter", key), key + ".diameter", "outer diameter (m)"),
-                               rd.positive(rd.need(n, "wall_thickness", key), key + ".wall_thickness", "wall thickness (m)"));
-      } else {
-        rd.fail(n["shape"], key + ".shape", "unknown shape '" + shape + "' (expected rectangle, circle, tube)");
+      switch (m.choice("shape")) {
+        case 0: s = SectionShape::rectangle(shape_key("width"), shape_key("height")); break;
+        case 1: s = SectionShape::circle(shape_key("diameter")); break;
+        default: s = SectionShape::tube(shape_key("diameter"), shape_key("wall_thickness"));
       }
       return BeamSection::from_material(E, nu, rho, s);
     }
-    rd.keys(n, key, kBeamProperties);
-    auto v = [&](const char* k, const char* what) { return rd.positive(rd.need(n, k, key), key + "." + k, what); };
+    const Section p(rd, n, key, kBeamProperties);
     std::optional<double> polar;
-    if (n["rhoI_polar"]) polar = rd.positive(n["rhoI_polar"], key + ".rhoI_polar", "polar mass moment per length (kg m)");
-    return BeamSection::from_properties(v("EA", "axial stiffness (N)"), v("GA2", "shear stiffness (N)"),
-                                        v("GA3", "shear stiffness (N)"), v("GJ", "torsional stiffness (N m^2)"),
-                                        v("EI2", "bending stiffness (N m^2)"), v("EI3", "bending stiffness (N m^2)"),
-                                        v("rhoA", "mass per length (kg/m)"), v("rhoI2", "mass moment per length (kg m)"),
-                                        v("rhoI3", "mass moment per length (kg m)"), polar);
+    if (p.has("rhoI_polar")) polar = p.number("rhoI_polar");
+    return BeamSection::from_properties(p.number("EA"), p.number("GA2"), p.number("GA3"), p.number("GJ"), p.number("EI2"),
+                                        p.number("EI3"), p.number("rhoA"), p.number("rhoI2"), p.number("rhoI3"), polar);
   } catch (const std::invalid_argument& e) {
     rd.fail(n, key, e.what());
   }
@@ -120,15 +112,15 @@ BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key
 
 /// Reads `mesh` (path relative to the scene file) with the scene's options.
 MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
-  rd.keys(mn, "mesh", kMesh);
-  const YAML::Node fn = rd.need(mn, "file", "mesh");
-  const std::string given = rd.text(fn, "mesh.file");
+  const Section m(rd, mn, "mesh", kMesh);
+  const YAML::Node fn = m.node("file");
+  const std::string given = m.text("file");
   // Relative to the scene file's directory (inputs/x.yaml names ../meshes/y.geo).
   std::filesystem::path path(given);
   if (path.is_relative()) path = std::filesystem::path(rd.file()).parent_path() / path;
   MeshOptions opt;
-  if (mn["elements"]) opt.elements_per_curve = rd.integer(mn["elements"], "mesh.elements", 1, 10000000);
-  if (mn["element_size"]) opt.element_size = rd.positive(mn["element_size"], "mesh.element_size", "element size (m)");
+  if (m.has("elements")) opt.elements_per_curve = m.integer("elements");
+  if (m.has("element_size")) opt.element_size = m.number("element_size");
   if (const YAML::Node p = mn["parameters"]) {
     if (!p.IsMap()) rd.fail(p, "mesh.parameters", "expected a map name: value (DefineConstant names of the .geo)");
     for (const auto& kv : p) {
@@ -204,10 +196,8 @@ ShellSection read_shell_section(Reader& rd, const YAML::Node& s, const std::stri
     const double t = rd.positive(rd.need(s, "thickness", path), path + ".thickness", "thickness (m)");
     const YAML::Node m = rd.need(s, "material", path);
     if (!m.IsMap()) rd.fail(m, path + ".material", "expected a map {E, nu, rho}");
-    rd.keys(m, path + ".material", kShellMaterial);
-    const double E = rd.positive(rd.need(m, "E", path + ".material"), path + ".material.E", "Young's modulus (Pa)");
-    const double nu = rd.number(rd.need(m, "nu", path + ".material"), path + ".material.nu");
-    const double rho = rd.number(rd.need(m, "rho", path + ".material"), path + ".material.rho");
+    const Section material(rd, m, path + ".material", kShellMaterial);
+    const double E = material.number("E"), nu = material.number("nu"), rho = material.number("rho");
     return ShellSection::isotropic(E, nu, rho, t);
   } catch (const std::invalid_argument& e) {
     rd.fail(s["section"] ? s["section"] : s["material"] ? s["material"] : s, path, e.what());
@@ -450,12 +440,8 @@ void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model
     } else {
       const std::string key = path_b + ".section";
       if (!sn.IsMap()) rd.fail(sn, key, "expected a map of section properties");
-      rd.keys(sn, key, kPlanarSection);
-      EA = rd.positive(rd.need(sn, "EA", key), key + ".EA", "axial stiffness (N)");
-      GA = rd.positive(rd.need(sn, "GA", key), key + ".GA", "shear stiffness (N)");
-      EI = rd.positive(rd.need(sn, "EI", key), key + ".EI", "bending stiffness (N m^2)");
-      rhoA = rd.positive(rd.need(sn, "rhoA", key), key + ".rhoA", "mass per length (kg/m)");
-      rhoI = rd.positive(rd.need(sn, "rhoI", key), key + ".rhoI", "rotary inertia per length (kg m)");
+      const Section p(rd, sn, key, kPlanarSection);
+      EA = p.number("EA"), GA = p.number("GA"), EI = p.number("EI"), rhoA = p.number("rhoA"), rhoI = p.number("rhoI");
     }
     for (size_t e = 0; e < block.elements.size(); ++e) {
       const int ma = block.elements[e][0], mb = block.elements[e][1];
