@@ -61,12 +61,12 @@ const Schema kBeams2d{"beams.2d", {
 const Schema kShells{"shells", {
     {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in the group's element order"},
     {"group", KeyType::Text, "–", kRequired, "a physical surface group, used by one beam or shell block only"},
-    {"thickness", KeyType::Number, "m", "**required** (unless `section`)", "positive"},
+    {"thickness", KeyType::Number, "m", "**required** (unless `section`)", "shell thickness", Range::positive(), "thickness (m)"},
     {"material", KeyType::Map, "Pa, –, kg/m³", "**required** (unless `section`)", "`{E, nu, rho}`: isotropic, E > 0, −1 < ν < 0.5, ρ ≥ 0"},
     {"section", KeyType::Map, "–", "–", "a laminate instead of `thickness` and `material` (`shells.section`)"},
     {"material_axis", KeyType::Vec3, "–", "[1, 0, 0]", "material axis 1, projected onto each element"},
-    {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area"},
-    {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there"}}};
+    {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area (docs/theory/shell.md)", Range::positive(), "drilling stiffness factor (of G t)"},
+    {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there (folds, T-junctions)", Range::positive(), "angle (degrees)"}}};
 const Schema kShellMaterial{"shells.material", {
     {"E", KeyType::Number, "Pa", kRequired, "Young's modulus", Range::positive(), "Young's modulus (Pa)"},
     {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio; −1 < ν < 0.5"},
@@ -76,7 +76,7 @@ const Schema kShellLaminate{"shells.section", {
     {"B", KeyType::List, "N", "zero", "membrane–bending coupling, 3×3 rows", {}, "", "3×3 list of rows"},
     {"D", KeyType::List, "N·m", kRequired, "bending stiffness, 3×3 rows", {}, "", "3×3 list of rows"},
     {"As", KeyType::List, "N/m", kRequired, "transverse shear stiffness, 2×2 rows", {}, "", "2×2 list of rows"},
-    {"thickness", KeyType::Number, "m", kRequired, "positive"},
+    {"thickness", KeyType::Number, "m", kRequired, "laminate thickness", Range::positive(), "thickness (m)"},
     {"mass", KeyType::Number, "kg/m²", kRequired, "mass per area"},
     {"rotary", KeyType::Number, "kg", kRequired, "rotary inertia per area"}}};
 
@@ -183,17 +183,17 @@ ShellSection read_shell_section(Reader& rd, const YAML::Node& s, const std::stri
         rd.fail(sec, path + ".section", "give either thickness and material, or a laminate section (with its own thickness)");
       const std::string key = path + ".section";
       if (!sec.IsMap()) rd.fail(sec, key, "expected a map {A, B, D, As, thickness, mass, rotary}");
-      rd.keys(sec, key, kShellLaminate);
+      const Section laminate(rd, sec, key, kShellLaminate);
       const Eigen::Matrix3d A = matrix(sec["A"], key + ".A", 3, "N/m");
       const Eigen::Matrix3d B = sec["B"] ? Eigen::Matrix3d(matrix(sec["B"], key + ".B", 3, "N")) : Eigen::Matrix3d::Zero();
       const Eigen::Matrix3d D = matrix(sec["D"], key + ".D", 3, "N m");
       const Eigen::Matrix2d As = matrix(sec["As"], key + ".As", 2, "N/m");
-      const double t = rd.positive(rd.need(sec, "thickness", key), key + ".thickness", "thickness (m)");
-      const double mass = rd.number(rd.need(sec, "mass", key), key + ".mass");
-      const double rotary = rd.number(rd.need(sec, "rotary", key), key + ".rotary");
+      const double t = laminate.number("thickness"), mass = laminate.number("mass"), rotary = laminate.number("rotary");
       return ShellSection::laminate(A, B, D, As, t, mass, rotary);
     }
-    const double t = rd.positive(rd.need(s, "thickness", path), path + ".thickness", "thickness (m)");
+    const Section shell(rd, s, path, kShells);
+    rd.need(s, "thickness", path);  // required unless `section`
+    const double t = shell.number("thickness");
     const YAML::Node m = rd.need(s, "material", path);
     if (!m.IsMap()) rd.fail(m, path + ".material", "expected a map {E, nu, rho}");
     const Section material(rd, m, path + ".material", kShellMaterial);
@@ -230,8 +230,9 @@ void read_shells(Reader& rd, const YAML::Node& sl, const MeshData& mesh, Model& 
     if (!groups_used.insert(group).second) rd.fail(s["group"], path + ".group", "group '" + group + "' is used by another beam or shell already");
     const ShellSection section = read_shell_section(rd, s, path);
     ShellOptions options;
-    if (s["drilling"]) options.drilling_factor = rd.positive(s["drilling"], path + ".drilling", "drilling stiffness factor (of G t)");
-    const double kink = s["kink_angle"] ? rd.positive(s["kink_angle"], path + ".kink_angle", "angle (degrees)") : 20.0;
+    const Section shell(rd, s, path, kShells);
+    options.drilling_factor = shell.number("drilling", options.drilling_factor);
+    const double kink = shell.number("kink_angle", 20.0);
     const bool axis_given = static_cast<bool>(s["material_axis"]);
     const Eigen::Vector3d axis = axis_given ? rd.direction(s["material_axis"], path + ".material_axis") : Eigen::Vector3d::UnitX();
     std::vector<std::vector<Eigen::Vector3d>> dirs;
