@@ -4,10 +4,12 @@
 //   alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]
 //                   [--study-set key=value ...] [--no-plots] [PETSc options]
 //   alphaflex keys [--check FILE | --update FILE]
+//   alphaflex modes SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5]
+//                   [PETSc/SLEPc options]
 //
 // Exit codes: 0 success, 1 bad input, 2 bad command line, 3 solver failure, 4 internal error,
 // 5 stopped by a signal after writing a checkpoint.
-#include <petscsys.h>
+#include <slepcsys.h>
 
 #include <cmath>
 #include <cstdio>
@@ -20,10 +22,12 @@
 #include <vector>
 
 #include "alphaflex/app/exit_agreement.hpp"
+#include "alphaflex/app/modal_run.hpp"
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/io/schema.hpp"
+#include "alphaflex/io/scene_modes.hpp"
 #include "alphaflex/study/study.hpp"
 
 namespace {
@@ -33,6 +37,8 @@ const char* kUsage =
     "       alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]\n"
     "                       [--study-set key=value ...] [--no-plots] [PETSc options]\n"
     "       alphaflex keys [--check FILE | --update FILE]\n"
+    "       alphaflex modes SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5]\n"
+    "                       [PETSc/SLEPc options]\n"
     "\n"
     "  -o OUTDIR          where NAME.h5, NAME.xdmf (ParaView) and NAME.csv (sensors) go (default: .)\n"
     "  --set key=value    override a scene key, e.g. --set solver.h=1e-3 --set solver.rho_inf=0.9\n"
@@ -48,6 +54,10 @@ const char* kUsage =
     "  keys: the key tables of every scene and study section, from the reader's schemas (markdown);\n"
     "  --update FILE rewrites the tables between <!-- keys:NAME --> and <!-- /keys --> in FILE,\n"
     "  --check FILE exits 1 if FILE's tables differ from the schemas (docs/input.md)\n"
+    "  modes: eigenfrequencies and mode shapes of the scene linearized about its initial state, its\n"
+    "  static equilibrium (solver.analysis: static, solver.initial_static) or --restart's checkpoint;\n"
+    "  writes OUTDIR/NAME_modes.csv and NAME_modeshapes.xdmf; keys modes.count/below/shift, options\n"
+    "  -eps_*, -pep_*, -st_* (SLEPc); docs/modes.md\n"
     "\n"
     "Scene keys: docs/input.md; running long jobs: docs/running.md. Exit codes: 0 ok, 1 bad input,\n"
     "2 bad command line, 3 solver failure, 4 a bug of alphaflex, 5 stopped by a signal (checkpoint written).\n";
@@ -230,6 +240,22 @@ int keys_command(int argc, char** argv) {
   }
 }
 
+// `alphaflex modes` (docs/modes.md): the scene and its modes: keys read on every rank, the modes
+// computed together, the table printed by rank 0.
+void modes_command(const CommandLine& cl, int rank, MPI_Comm exit_comm, double exit_timeout, std::string& message) {
+  alphaflex::Scene scene = read_on_every_rank(
+      cl.scene, [&] { return alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD); }, message);
+  alphaflex::ModalRunOptions opt;
+  opt.modes = read_on_every_rank(
+      cl.scene, [&] { return alphaflex::read_modal_options(cl.scene, cl.overrides, PETSC_COMM_WORLD); }, message);
+  opt.outdir = cl.outdir;
+  opt.restart = cl.restart;
+  opt.exit_comm = exit_comm;
+  opt.exit_timeout = exit_timeout;
+  const alphaflex::ModalRunSummary sum = alphaflex::run_modes(scene, opt, PETSC_COMM_WORLD);
+  if (rank == 0) std::cout << alphaflex::format_modes(scene, sum);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -239,11 +265,11 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  if (cl.error.empty() && cl.command != "run" && cl.command != "study")
+  if (cl.error.empty() && cl.command != "run" && cl.command != "study" && cl.command != "modes")
     cl.error = cl.command.empty() ? "no command given" : "unknown command '" + cl.command + "'";
   if (cl.error.empty() && cl.scene.empty()) cl.error = cl.command + " needs a scene file";
-  if (cl.error.empty() && cl.command == "study" && !cl.restart.empty()) cl.error = "--restart is an option of `alphaflex run`";
-  if (cl.error.empty() && cl.command == "run" && cl.study_options)
+  if (cl.error.empty() && cl.command == "study" && !cl.restart.empty()) cl.error = "--restart is an option of `alphaflex run` and `alphaflex modes`";
+  if (cl.error.empty() && cl.command != "study" && cl.study_options)
     cl.error = "--study, --study-set and --no-plots are options of `alphaflex study`";
   if (!cl.error.empty()) {
     std::cerr << "alphaflex: " << cl.error << "\n\n" << kUsage;
@@ -252,7 +278,8 @@ int main(int argc, char** argv) {
 
   int pargc = static_cast<int>(cl.petsc_argv.size()) - 1;
   char** pargv = cl.petsc_argv.data();
-  PetscCall(PetscInitialize(&pargc, &pargv, nullptr, nullptr));
+  // SLEPc's initialization (it initializes PETSc): EPS and PEP refuse to run without it (modes).
+  PetscCall(SlepcInitialize(&pargc, &pargv, nullptr, nullptr));
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
@@ -269,6 +296,8 @@ int main(int argc, char** argv) {
   try {
     if (cl.command == "study") {
       study_command(cl, rank, message);
+    } else if (cl.command == "modes") {
+      modes_command(cl, rank, exit_comm, exit_timeout, message);
     } else {
       run_command(cl, rank, size, exit_comm, exit_timeout, message);
     }
@@ -289,6 +318,6 @@ int main(int argc, char** argv) {
   // error only this rank saw ends the job (the others wait in a collective call it has left).
   code = alphaflex::end_run(exit_comm, code, message, exit_timeout);
   MPI_Comm_free(&exit_comm);
-  PetscCall(PetscFinalize());
+  PetscCall(SlepcFinalize());
   return code;
 }

@@ -12,6 +12,7 @@
 
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/progress.hpp"
+#include "alphaflex/app/run_objects.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
@@ -37,31 +38,13 @@ std::vector<double> sensor_values(const Subdomain& sub, const MechanicalState& s
   return v;
 }
 
-/// The objects of a run whose destructors are collective (PETSc matrices and vectors, MUMPS, the
-/// parallel HDF5 file): they live outside the run's body, so that after an error they are destroyed
-/// only once the ranks know that they all failed (run_simulation). Members go in reverse order.
-struct RunObjects {
-  std::unique_ptr<Subdomain> sub;
-  std::unique_ptr<SaddlePointSystem> system;
-  std::unique_ptr<LinearSolver> solver;
-  std::unique_ptr<GeneralizedAlpha> integrator;
-  std::unique_ptr<ResultsWriter> writer;
-};
-
 RunSummary run_body(RunObjects& objects, Scene& scene, const RunOptions& opt, MPI_Comm comm);
 
 }  // namespace
 
 RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
-  RunObjects objects;
-  try {
-    return run_body(objects, scene, opt, comm);
-  } catch (const std::exception& e) {
-    // An error one rank only saw ends the job here, before a collective destructor waits for ranks
-    // that are elsewhere; one that every rank saw is rethrown and ends the run cleanly.
-    fail_together(opt.exit_comm, exit_code_of(e), e.what(), opt.exit_timeout);
-    throw;
-  }
+  return run_with_objects(opt.exit_comm, opt.exit_timeout,
+                          [&](RunObjects& objects) { return run_body(objects, scene, opt, comm); });
 }
 
 namespace {

@@ -141,7 +141,7 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
       continue;
     }
     const Constraint& c = *m.constraints()[static_cast<size_t>(e.constraint)];
-    os << "redundant constraint: joint '" << c.name() << "' (" << c.type() << ") equation " << (e.equation + 1)
+    os << "redundant constraint: joint '" << c.name() << "' (" << c.type() << ") " << c.equation_label(e.equation)
        << " is a combination of equations of";
     if (e.depends_on.empty()) os << " nothing (it is void at this configuration)";
     for (size_t k = 0; k < e.depends_on.size(); ++k)

@@ -8,6 +8,7 @@
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/core/fault_injection.hpp"
+#include "alphaflex/core/petsc_error.hpp"
 
 namespace alphaflex {
 namespace {
@@ -63,7 +64,7 @@ SaddlePointSystem::SaddlePointSystem(const Subdomain& subdomain)
     con_rows_.push_back(rows);
     con_mults_.push_back(mults);
   }
-  PetscCallAbort(comm_, preallocate());
+  check_petsc(preallocate(), "the preallocation of the iteration matrix");
 }
 
 SaddlePointSystem::~SaddlePointSystem() {

@@ -8,6 +8,7 @@
 
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/petsc_error.hpp"
 
 namespace alphaflex {
 namespace {
@@ -28,10 +29,6 @@ void register_events() {
 
 
 }  // namespace
-
-void check_petsc(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw SolverError(std::string("PETSc error ") + std::to_string(ierr) + " in " + what);
-}
 
 LinearizedSystem::LinearizedSystem(SaddlePointSystem& system, LinearSolver& solver) : sys_(system), solver_(solver) {
   register_events();
@@ -119,7 +116,7 @@ std::string LinearizedSystem::describe_largest(const ModelVector& r) const {
       const int first = m.first_multiplier(static_cast<int>(c));
       if (j >= first && j < first + m.constraints()[c]->size())
         os << "; largest constraint violation " << r.multipliers[j] << " in joint '" << m.constraints()[c]->name()
-           << "' (" << m.constraints()[c]->type() << ", equation " << (j - first + 1) << ")";
+           << "' (" << m.constraints()[c]->type() << ", " << m.constraints()[c]->equation_label(static_cast<int>(j - first)) << ")";
     }
   return text + sub.broadcast(os.str(), root);
 }

@@ -45,6 +45,7 @@ const Schema& top_schema() {
       {"forces", KeyType::List, "–", "none", "force elements and loads"},
       {"sensors", KeyType::List, "–", "none", "sensors: the columns of NAME.csv"},
       {"study", KeyType::Map, "–", "none", "read by `alphaflex study` only; `alphaflex run` ignores it"},
+      {"modes", KeyType::Map, "–", "none", "read by `alphaflex modes` only (`modes`, docs/modes.md); `alphaflex run` ignores it"},
   }};
   return s;
 }
@@ -548,6 +549,7 @@ const SceneTypes& planar_types() {
 std::vector<const Schema*> section_schemas() {
   std::vector<const Schema*> v{&top_schema(), &load_schema(), &solver_schema(), &static_schema(), &newton_schema(), &output_schema()};
   for (const Schema* s : mesh_schemas()) v.push_back(s);
+  v.push_back(&modes_schema());
   for (const auto& s : input::time_function_schemas()) v.push_back(&s);
   return v;
 }
@@ -629,7 +631,8 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   scene.file = label;
   if (!root.IsMap()) rd.fail(root, "(top level)", "expected a map of sections (solver, bodies, joints, ...)");
   const Section top(rd, root, "", top_schema());
-  // `study:` is read by `alphaflex study` (study/study_spec.hpp); a run ignores it.
+  // `study:` is read by `alphaflex study` (study/study_spec.hpp), `modes:` by `alphaflex modes`
+  // (io/scene_modes.hpp); a run ignores them.
   rd.read_parameters(root["parameters"]);
   scene.name = top.text("name", std::filesystem::path(label).stem().string());
   if (scene.name.empty() || scene.name.find_first_of("/\\ ") != std::string::npos)

@@ -178,6 +178,7 @@ int sensor_joint(const Item& it);
 /// The schemas of the scene's sections (top level, solver, output, mesh, ...) and time functions.
 std::vector<const Schema*> section_schemas();
 std::vector<const Schema*> mesh_schemas();  ///< scene_mesh.cpp
+const Schema& modes_schema();               ///< scene_modes.cpp
 
 /// The schema of a type: `name`, `type` and the type's own keys.
 Schema type_schema(const std::string& name, const std::string& type_doc, std::vector<Key> keys);

@@ -151,35 +151,6 @@ void read_rigid_body_3d(const Item& it) {
   }
 }
 
-/// The spatial joint kinds: which keys a scene gives for each (its axes, its drivers). The
-/// equations themselves are SpatialJoint's (joints/spatial_joints.hpp); this table is the reader's
-/// one view of them, to be replaced by the joints module's own table of kinds.
-struct SpatialJointKind {
-  const char* name;
-  SpatialJointType type;
-  int equations;
-  bool axis, axis2;                       ///< the scene gives `axis` (and `axis2`)
-  bool angle_driver, displacement_driver;  ///< `driver.angle`, `driver.displacement` allowed
-  const char* doc;
-};
-constexpr SpatialJointKind kSpatialJointKinds[] = {
-    {"spherical", SpatialJointType::Spherical, 3, false, false, false, false, "ball joint: the points coincide, all rotations free"},
-    {"universal", SpatialJointType::Universal, 4, true, true, false, false, "rotations about `axis` (on body1) and `axis2` (on body2, ⊥ axis) free"},
-    {"revolute", SpatialJointType::Revolute, 5, true, false, true, false, "rotation about `axis` free"},
-    {"cylindrical", SpatialJointType::Cylindrical, 4, true, false, true, true, "rotation about and translation along `axis` free"},
-    {"prismatic", SpatialJointType::Prismatic, 5, true, false, false, true, "translation along `axis` free"},
-    {"planar", SpatialJointType::Planar, 3, true, false, false, false, "translations ⊥ `axis` and rotation about `axis` free"},
-    {"fixed", SpatialJointType::Fixed, 6, false, false, false, false, "no relative motion (clamp; rigid connection of a beam node to a body)"},
-    {"point_on_line", SpatialJointType::PointOnLine, 2, true, false, false, false, "all rotations and translation along `axis` free"},
-    {"point_on_plane", SpatialJointType::PointOnPlane, 1, true, false, false, false, "all rotations and translations ⊥ `axis` free (a roller support)"},
-};
-
-/// `reference`: a direction where a driver's angle is zero (axis joints with a driver), or the
-/// joint frame's rotation (a fixed joint).
-bool has_reference(const SpatialJointKind& kind) {
-  return kind.angle_driver || kind.displacement_driver || kind.equations == 6;
-}
-
 Schema spatial_joint_schema(const SpatialJointKind& kind) {
   std::vector<Key> keys{
       {"body1", KeyType::Text, "–", "– (or `marker1`, or `group`)", "the first body or beam/shell node; not `ground`"},
@@ -189,21 +160,19 @@ Schema spatial_joint_schema(const SpatialJointKind& kind) {
       {"marker2", KeyType::Text, "–", "–", "a marker of a body at the joint's location at t = 0: stands for body2"},
       {"group", KeyType::Text, "–", "–", "a mesh group instead of body1: one joint NAME[k] per node of the group"},
       {"group2", KeyType::Text, "–", "–", "with `group`: a second mesh group; one joint per pair of coincident nodes"}};
-  if (kind.axis) keys.push_back({"axis", KeyType::Vec3, "–", kRequired + std::string(" (unless `marker1`)"), "joint axis (world, t = 0); non-zero"});
-  if (kind.axis2) keys.push_back({"axis2", KeyType::Vec3, "–", kRequired, "second axis (world, t = 0), perpendicular to `axis`"});
-  if (has_reference(kind))
-    keys.push_back(kind.axis ? Key{"reference", KeyType::Vec3, "–", "any ⊥ axis", "direction ⊥ axis where a driver's angle is zero; not parallel to the axis"}
+  if (kind.needs_axis) keys.push_back({"axis", KeyType::Vec3, "–", kRequired + std::string(" (unless `marker1`)"), "joint axis (world, t = 0); non-zero"});
+  if (kind.needs_axis2) keys.push_back({"axis2", KeyType::Vec3, "–", kRequired, "second axis (world, t = 0), perpendicular to `axis`"});
+  if (kind.takes_reference)
+    keys.push_back(kind.needs_axis ? Key{"reference", KeyType::Vec3, "–", "any ⊥ axis", "direction ⊥ axis where a driver's angle is zero; not parallel to the axis"}
                              : Key{"reference", KeyType::Map, "rad", "body1's frame", "rotation of the joint frame", {}, "", "rotation"});
   if (kind.angle_driver || kind.displacement_driver)
     keys.push_back({"driver", KeyType::Map, "rad, m", "none",
                     std::string("prescribed relative motion: ") + (kind.angle_driver ? "`angle` (rad)" : "") +
                         (kind.angle_driver && kind.displacement_driver ? ", " : "") +
                         (kind.displacement_driver ? "`displacement` (m)" : "") + ", each a number or a time function"});
-  return type_schema(std::string("joints.3d.") + kind.name,
-                     "`" + std::string(kind.name) + "`: " + std::to_string(kind.equations) + " equations; " + kind.doc, keys);
+  return type_schema("joints.3d." + kind.name,
+                     "`" + kind.name + "`: " + std::to_string(kind.num_equations) + " equations; " + kind.doc, keys);
 }
-
-std::string name_of(const SpatialJointKind& kind) { return kind.name; }
 
 const Schema& driver_schema() {
   static const Schema s{"joints.3d.driver", {
@@ -212,7 +181,7 @@ const Schema& driver_schema() {
   return s;
 }
 
-/// Every spatial joint kind: one reader, the kind's row of kSpatialJointKinds says what it takes.
+/// Every spatial joint kind: one reader, the kind's row of spatial_joint_kinds() (joints/spatial_joints.hpp) says what it takes.
 void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
   Reader& rd = it.rd;
   SceneBuilder& sb = it.sb;
@@ -220,8 +189,7 @@ void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
   const YAML::Node& j = it.node;
   const std::string& path = it.path;
   const std::string& name = it.name;
-  const SpatialJointType type = kind.type;
-  const bool has_axis = kind.axis;
+  const bool has_axis = kind.needs_axis;
   // A marker (a named frame of a body) stands for the body, the location and the joint frame.
   auto marker_of = [&](const char* key) -> const NamedMarker* {
     if (!j[key]) return nullptr;
@@ -275,7 +243,7 @@ void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
     Eigen::Matrix3d R = mk1 ? Eigen::Matrix3d(p1.R * mk1->rotation) : p1.R;
     if (mk1 && has_axis && !j["axis"]) {
       R = p1.R * mk1->rotation;
-    } else if (kind.axis2) {
+    } else if (kind.needs_axis2) {
       const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
       const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
       if (std::fabs(a1.dot(a2)) > 1e-9)
@@ -301,12 +269,12 @@ void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
       rd.keys(d, path + ".driver", driver_schema());
       if (d["angle"]) {
         if (!kind.angle_driver)
-          rd.fail(d["angle"], path + ".driver.angle", "a " + name_of(kind) + " joint has no rotation to drive (use displacement)");
+          rd.fail(d["angle"], path + ".driver.angle", "a " + kind.name + " joint has no rotation to drive (use displacement)");
         angle = rd.function(d["angle"], path + ".driver.angle");
       }
       if (d["displacement"]) {
         if (!kind.displacement_driver)
-          rd.fail(d["displacement"], path + ".driver.displacement", "a " + name_of(kind) + " joint has no translation to drive (use angle)");
+          rd.fail(d["displacement"], path + ".driver.displacement", "a " + kind.name + " joint has no translation to drive (use angle)");
         displacement = rd.function(d["displacement"], path + ".driver.displacement");
       }
     }
@@ -322,7 +290,7 @@ void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
     const SpatialMarker A = marker_at(model, b1, 0, loc, R);
     const SpatialMarker B = marker_at(model, b2, 1, loc, R);
     try {
-      model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, type, A, B, angle, displacement));
+      model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, kind, A, B, angle, displacement));
     } catch (const std::invalid_argument& e) {
       rd.fail(j, path, e.what());
     }
@@ -461,7 +429,7 @@ const SceneTypes& spatial_types() {
         {"angular_velocity", KeyType::Vec3, "rad/s", "[0, 0, 0]", "world components at t = 0"},
         {"markers", KeyType::List, "m, rad", "none", "frames fixed to the body, `{name, position, orientation}` in the body frame"}}),
                   read_rigid_body_3d);
-    for (const SpatialJointKind& kind : kSpatialJointKinds)  // one registration per row of the table
+    for (const SpatialJointKind& kind : spatial_joint_kinds())  // one registration per row of the joints' table
       t.joints.add(kind.name, spatial_joint_schema(kind), [&kind](const Item& it) { read_spatial_joint(it, kind); });
 
     const Key follower_off{"follower", KeyType::Flag, "–", "off", "off: world components (dead load); on: body-frame components (follower)"};

@@ -2,112 +2,228 @@
 
 #include <array>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace alphaflex {
 
-const char* to_string(SpatialJointType t) {
-  switch (t) {
-    case SpatialJointType::Spherical: return "spherical";
-    case SpatialJointType::Universal: return "universal";
-    case SpatialJointType::Revolute: return "revolute";
-    case SpatialJointType::Cylindrical: return "cylindrical";
-    case SpatialJointType::Prismatic: return "prismatic";
-    case SpatialJointType::Planar: return "planar";
-    case SpatialJointType::Fixed: return "fixed";
-    case SpatialJointType::PointOnLine: return "point_on_line";
-    case SpatialJointType::PointOnPlane: return "point_on_plane";
-  }
-  return "?";
+namespace {
+
+const char* label(MarkerVector u) {
+  static const char* const names[] = {"a1", "a2", "a3", "b1", "b2", "b3", "d", "e_x", "e_y", "e_z"};
+  return names[static_cast<int>(u)];
+}
+bool is_world(MarkerVector u) { return u >= MarkerVector::e_x; }
+int world_index(MarkerVector u) { return static_cast<int>(u) - static_cast<int>(MarkerVector::e_x); }
+unsigned bit(MarkerVector u) { return 1u << static_cast<int>(u); }
+
+/// The drivers, equations of the same form with a weight that depends on time (the one special
+/// term): angle a1·(cos φ b2 − sin φ b1) = cos φ (a1·b2) + sin φ (−a1·b1); displacement −b3·d − u(t).
+struct DriverEquations {
+  SpatialJointEquation angle_cos = dot(MarkerVector::a1, MarkerVector::b2);
+  SpatialJointEquation angle_sin = -1.0 * dot(MarkerVector::a1, MarkerVector::b1);
+  SpatialJointEquation displacement = -1.0 * dot(MarkerVector::b3, MarkerVector::d);
+};
+const DriverEquations& drivers() {
+  static const DriverEquations d;
+  return d;
 }
 
-int equations_of(SpatialJointType t) {
-  switch (t) {
-    case SpatialJointType::Spherical: return 3;
-    case SpatialJointType::Universal: return 4;
-    case SpatialJointType::Revolute: return 5;
-    case SpatialJointType::Cylindrical: return 4;
-    case SpatialJointType::Prismatic: return 5;
-    case SpatialJointType::Planar: return 3;
-    case SpatialJointType::Fixed: return 6;
-    case SpatialJointType::PointOnLine: return 2;
-    case SpatialJointType::PointOnPlane: return 1;
+}  // namespace
+
+SpatialJointKind SpatialJointKind::make(std::string name, std::string doc, std::vector<SpatialJointEquation> equations,
+                                        unsigned keys, unsigned drivers) {
+  SpatialJointKind k;
+  k.name = std::move(name);
+  k.doc = std::move(doc);
+  k.equations = std::move(equations);
+  k.needs_axis = keys & axis;
+  k.needs_axis2 = keys & axis2;
+  k.takes_reference = keys & reference;
+  k.angle_driver = drivers & angle;
+  k.displacement_driver = drivers & displacement;
+  k.num_equations = static_cast<int>(k.equations.size());
+  for (const SpatialJointEquation& e : k.equations) {
+    if (e.terms.empty()) throw std::logic_error("spatial joint '" + k.name + "': an equation without terms");
+    for (const SpatialJointTerm& t : e.terms)
+      if (is_world(t.u) && is_world(t.v))
+        throw std::logic_error("spatial joint '" + k.name + "': " + e.name + " is a constant");
+    for (const std::string& other : k.equation_names)
+      if (other == e.name) throw std::logic_error("spatial joint '" + k.name + "': two equations named " + e.name);
+    k.equation_names.push_back(e.name);
   }
-  return 0;
+  return k;
 }
 
-SpatialJoint::SpatialJoint(std::string name, std::vector<int> nodes, SpatialJointType type, SpatialMarker a,
+// The joint types. Adding one is one row here: its equations (sums of dot products of the marker
+// axes a1..a3 (node 1), b1..b3 (node 2 or the ground), d = p_B − p_A and the world axes e_x..e_z),
+// the scene keys it reads and the drivers it takes. The scene reader, Φ and its AD derivatives, the
+// closed-form K_Φ, the equation names and the tests (which iterate over this table) follow.
+const std::vector<SpatialJointKind>& spatial_joint_kinds() {
+  static const std::vector<SpatialJointKind> kinds = [] {
+    using V = MarkerVector;
+    using K = SpatialJointKind;
+    const auto row = &SpatialJointKind::make;
+    const V a1 = V::a1, a2 = V::a2, a3 = V::a3, b1 = V::b1, b2 = V::b2, b3 = V::b3, d = V::d;
+    // p_B − p_A = 0, by components (named x, y, z).
+    const SpatialJointEquation x = dot(V::e_x, d), y = dot(V::e_y, d), z = dot(V::e_z, d);
+    std::vector<SpatialJointKind> rows{
+        row("spherical", "ball joint: the points coincide, any rotation", {x, y, z}, K::no_keys, K::no_drivers),
+        row("universal", "Cardan joint: the points coincide, rotations about a1 = axis (body 1) and b2 = axis2",
+            {x, y, z, dot(a1, b2)}, K::axis | K::axis2, K::no_drivers),
+        row("revolute", "hinge: rotation about the axis a3", {x, y, z, dot(a3, b1), dot(a3, b2)}, K::axis | K::reference,
+            K::angle),
+        row("cylindrical", "rotation about and translation along the axis a3",
+            {dot(a1, d), dot(a2, d), dot(a3, b1), dot(a3, b2)}, K::axis | K::reference, K::angle | K::displacement),
+        row("prismatic", "slider: translation along the axis a3",
+            {dot(a1, d), dot(a2, d), dot(a3, b1), dot(a3, b2), dot(a1, b2)}, K::axis | K::reference, K::displacement),
+        row("planar", "translations in the plane ⊥ a3 and rotation about a3", {dot(a3, d), dot(a3, b1), dot(a3, b2)},
+            K::axis, K::no_drivers),
+        row("fixed", "clamp, rigid link: no relative motion", {x, y, z, dot(a2, b3), dot(a3, b1), dot(a1, b2)},
+            K::reference, K::no_drivers),
+        row("point_on_line", "B's point on A's axis a3, any rotation", {dot(a1, d), dot(a2, d)}, K::axis, K::no_drivers),
+        row("point_on_plane", "B's point in the plane ⊥ a3 through A's point, any rotation (shell supports)",
+            {dot(a3, d)}, K::axis, K::no_drivers),
+    };
+    for (size_t i = 0; i < rows.size(); ++i)
+      for (size_t j = 0; j < i; ++j)
+        if (rows[i].name == rows[j].name) throw std::logic_error("two spatial joint types named " + rows[i].name);
+    return rows;
+  }();
+  return kinds;
+}
+
+SpatialJointEquation dot(MarkerVector u, MarkerVector v) {
+  SpatialJointEquation e;
+  e.terms.push_back({u, v, 1.0});
+  if (is_world(u) && v == MarkerVector::d)
+    e.name = std::string(1, "xyz"[world_index(u)]);
+  else
+    e.name = std::string(label(u)) + "·" + label(v);
+  return e;
+}
+
+SpatialJointEquation operator+(SpatialJointEquation f, const SpatialJointEquation& g) {
+  f.terms.insert(f.terms.end(), g.terms.begin(), g.terms.end());
+  f.name += (g.name.rfind("−", 0) == 0 ? " − " + g.name.substr(std::string("−").size()) : " + " + g.name);
+  return f;
+}
+
+SpatialJointEquation operator*(double c, SpatialJointEquation f) {
+  for (SpatialJointTerm& t : f.terms) t.coefficient *= c;
+  std::ostringstream os;
+  if (c == -1.0)
+    os << "−";
+  else
+    os << c << " ";
+  f.name = os.str() + (f.terms.size() > 1 ? "(" + f.name + ")" : f.name);
+  return f;
+}
+
+const SpatialJointKind* find_spatial_joint_kind(const std::string& name) {
+  for (const SpatialJointKind& k : spatial_joint_kinds())
+    if (k.name == name) return &k;
+  return nullptr;
+}
+
+std::string spatial_joint_kind_names() {
+  std::string s;
+  for (const SpatialJointKind& k : spatial_joint_kinds()) s += (s.empty() ? "" : ", ") + k.name;
+  return s;
+}
+
+namespace {
+/// "a, b or c": the rows that take a driver, for the constructor's message.
+std::string kinds_with(bool SpatialJointKind::*driver) {
+  std::vector<std::string> names;
+  for (const SpatialJointKind& k : spatial_joint_kinds())
+    if (k.*driver) names.push_back(k.name);
+  std::string s;
+  for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return s;
+}
+}  // namespace
+
+SpatialJoint::SpatialJoint(std::string name, std::vector<int> nodes, const SpatialJointKind& kind, SpatialMarker a,
                            SpatialMarker b, TimeFunctionPtr angle, TimeFunctionPtr displacement)
-    : Constraint(std::move(name), std::move(nodes)), type_(type), a_(a), b_(b), angle_(std::move(angle)),
+    : Constraint(std::move(name), std::move(nodes)), kind_(&kind), a_(a), b_(b), angle_(std::move(angle)),
       displacement_(std::move(displacement)) {
-  if (angle_ && type_ != SpatialJointType::Revolute && type_ != SpatialJointType::Cylindrical)
-    throw std::invalid_argument("an angle driver needs a revolute or cylindrical joint");
-  if (displacement_ && type_ != SpatialJointType::Prismatic && type_ != SpatialJointType::Cylindrical)
-    throw std::invalid_argument("a displacement driver needs a prismatic or cylindrical joint");
-  size_ = equations_of(type_) + (angle_ ? 1 : 0) + (displacement_ ? 1 : 0);
+  if (angle_ && !kind_->angle_driver)
+    throw std::invalid_argument("an angle driver needs a " + kinds_with(&SpatialJointKind::angle_driver) + " joint");
+  if (displacement_ && !kind_->displacement_driver)
+    throw std::invalid_argument("a displacement driver needs a " + kinds_with(&SpatialJointKind::displacement_driver) +
+                                " joint");
+  size_ = kind_->num_equations + (angle_ ? 1 : 0) + (displacement_ ? 1 : 0);
+  const auto use = [&](const SpatialJointEquation& e) {
+    for (const SpatialJointTerm& t : e.terms) uses_ |= bit(t.u) | bit(t.v);
+  };
+  for (const SpatialJointEquation& e : kind_->equations) use(e);
+  if (angle_) use(drivers().angle_cos), use(drivers().angle_sin);
+  if (displacement_) use(drivers().displacement);
 }
+
+std::string SpatialJoint::equation_name(int k) const {
+  if (k < kind_->num_equations) return kind_->equation_names[static_cast<size_t>(k)];
+  return angle_ && k == kind_->num_equations ? "angle" : "displacement";
+}
+
+namespace {
+
+/// The marker poses and d at given frames, for the AD kernel (the axes are read in place as columns).
+template <class S>
+struct KernelVectors {
+  Pose<S> A, B;
+  Vec3<S> d;
+
+  /// f(the vector u) for a marker axis or d (not a world axis).
+  template <class F>
+  S with(MarkerVector u, F&& f) const {
+    switch (u) {
+      case MarkerVector::a1: return f(A.R.col(0));
+      case MarkerVector::a2: return f(A.R.col(1));
+      case MarkerVector::a3: return f(A.R.col(2));
+      case MarkerVector::b1: return f(B.R.col(0));
+      case MarkerVector::b2: return f(B.R.col(1));
+      case MarkerVector::b3: return f(B.R.col(2));
+      default: return f(d);
+    }
+  }
+
+  /// u·v (with a world axis: the component of the other vector).
+  S dot(MarkerVector u, MarkerVector v) const {
+    if (is_world(u)) return with(v, [&](const auto& w) -> S { return w[world_index(u)]; });
+    if (is_world(v)) return with(u, [&](const auto& w) -> S { return w[world_index(v)]; });
+    return with(u, [&](const auto& p) -> S { return with(v, [&](const auto& r) -> S { return p.dot(r); }); });
+  }
+
+  /// The value of an equation (terms with coefficient 1 unscaled: the same bits as u·v).
+  S operator()(const SpatialJointEquation& e) const {
+    const auto term = [&](const SpatialJointTerm& t) -> S {
+      const S v = dot(t.u, t.v);
+      return t.coefficient == 1.0 ? v : S(t.coefficient * v);
+    };
+    S sum = term(e.terms.front());
+    for (size_t i = 1; i < e.terms.size(); ++i) sum += term(e.terms[i]);
+    return sum;
+  }
+};
+
+}  // namespace
 
 template <class S>
 void SpatialJoint::operator()(const Pose<S>* frames, const S& t, KernelVector<S>& out) const {
-  const Pose<S> A = a_.pose<S>(frames), B = b_.pose<S>(frames);
-  const Vec3<S> d = B.x - A.x;
-  const auto a1 = A.R.col(0), a2 = A.R.col(1), a3 = A.R.col(2);
-  const auto b1 = B.R.col(0), b2 = B.R.col(1), b3 = B.R.col(2);
+  KernelVectors<S> m{a_.pose<S>(frames), b_.pose<S>(frames), Vec3<S>()};
+  m.d = m.B.x - m.A.x;
   out.resize(size_);
   int k = 0;
-  auto put = [&](const S& v) { out[k++] = v; };
-  switch (type_) {
-    case SpatialJointType::Spherical:
-      for (int i = 0; i < 3; ++i) put(d[i]);
-      break;
-    case SpatialJointType::Universal:
-      for (int i = 0; i < 3; ++i) put(d[i]);
-      put(a1.dot(b2));
-      break;
-    case SpatialJointType::Revolute:
-      for (int i = 0; i < 3; ++i) put(d[i]);
-      put(a3.dot(b1));
-      put(a3.dot(b2));
-      break;
-    case SpatialJointType::Cylindrical:
-      put(a1.dot(d));
-      put(a2.dot(d));
-      put(a3.dot(b1));
-      put(a3.dot(b2));
-      break;
-    case SpatialJointType::Prismatic:
-      put(a1.dot(d));
-      put(a2.dot(d));
-      put(a3.dot(b1));
-      put(a3.dot(b2));
-      put(a1.dot(b2));
-      break;
-    case SpatialJointType::Planar:
-      put(a3.dot(d));
-      put(a3.dot(b1));
-      put(a3.dot(b2));
-      break;
-    case SpatialJointType::Fixed:
-      for (int i = 0; i < 3; ++i) put(d[i]);
-      put(a2.dot(b3));
-      put(a3.dot(b1));
-      put(a1.dot(b2));
-      break;
-    case SpatialJointType::PointOnLine:
-      put(a1.dot(d));
-      put(a2.dot(d));
-      break;
-    case SpatialJointType::PointOnPlane:
-      put(a3.dot(d));
-      break;
-  }
+  for (const SpatialJointEquation& e : kind_->equations) out[k++] = m(e);
   if (angle_) {
     using std::cos;
     using std::sin;
     const S phi = time_value<S>(*angle_, t);
-    put(a1.dot(cos(phi) * b2 - sin(phi) * b1));  // sin(ϕ − φ(t)), ϕ: angle of A from B about b3
+    out[k++] = cos(phi) * m(drivers().angle_cos) + sin(phi) * m(drivers().angle_sin);  // sin(ϕ − φ(t))
   }
-  if (displacement_) put(-b3.dot(d) - time_value<S>(*displacement_, t));  // (p_A − p_B)·b3 = u(t)
+  if (displacement_) out[k++] = m(drivers().displacement) - time_value<S>(*displacement_, t);  // (p_A − p_B)·b3 = u(t)
 }
 
 void SpatialJoint::evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
@@ -128,70 +244,62 @@ namespace {
 // (row m: inner, column p: outer). The same bits of K_Φ as nested AD up to round-off (tested
 // against kernel_second and finite differences), at a small fraction of its cost.
 struct JointVector {
-  Eigen::Vector3d value = Eigen::Vector3d::Zero();
-  Eigen::Matrix<double, 3, 12> d1 = Eigen::Matrix<double, 3, 12>::Zero();  // ∂/∂δ, 6 per node
+  Eigen::Vector3d value;
+  Eigen::Matrix<double, 3, 12> d1;  // ∂/∂δ, 6 per node; set only if `varies`
   struct Rotating {
-    int node = 0;
+    int node;
     Eigen::Vector3d w;  // in the node's frame
-    double sign = 1.0;
+    double sign;
   };
-  std::array<Rotating, 2> parts{};
+  std::array<Rotating, 2> parts;
   int nparts = 0;
   bool varies = false;  // d1 ≠ 0 (false: a fixed world vector, on the ground)
 };
 
-/// R_f w: axis `k` of marker m (a fixed world vector on the ground).
-JointVector marker_axis(const SpatialMarker& m, int k, const Pose<double>* frames) {
-  JointVector u;
+/// u = R_f w: axis `k` of marker m (a fixed world vector on the ground), set in place.
+void set_marker_axis(JointVector& u, const SpatialMarker& m, int k, const Pose<double>* frames) {
   if (m.slot < 0) {
     u.value = m.rotation.col(k);
-    return u;
+    return;
   }
   const Eigen::Matrix3d& R = frames[m.slot].R;
   const Eigen::Vector3d w = m.rotation.col(k);
   u.value = R * w;
+  u.d1.setZero();
   u.d1.block<3, 3>(0, 6 * m.slot + 3) = -R * hat<double>(w);
   u.parts[0] = {m.slot, w, 1.0};
   u.nparts = 1;
   u.varies = true;
-  return u;
 }
 
-/// x_f + R_f s: the point of marker m.
-JointVector marker_point(const SpatialMarker& m, const Pose<double>* frames) {
-  JointVector u;
-  if (m.slot < 0) {
-    u.value = m.position;
-    return u;
+/// d = p_B − p_A, p = x_f + R_f s the point of a marker (s in the world on the ground), set in place.
+void set_marker_difference(JointVector& d, const SpatialMarker& a, const SpatialMarker& b,
+                           const Pose<double>* frames) {
+  const auto point = [&](const SpatialMarker& m) -> Eigen::Vector3d {
+    if (m.slot < 0) return m.position;
+    return frames[m.slot].x + frames[m.slot].R * m.position;
+  };
+  d.value = point(b) - point(a);
+  d.d1.setZero();
+  for (const SpatialMarker* m : {&b, &a}) {
+    if (m->slot < 0) continue;
+    const double sign = m == &b ? 1.0 : -1.0;
+    const Eigen::Matrix3d& R = frames[m->slot].R;
+    d.d1.block<3, 3>(0, 6 * m->slot) = sign * Eigen::Matrix3d::Identity();
+    d.d1.block<3, 3>(0, 6 * m->slot + 3) = sign * (-R * hat<double>(m->position));
+    d.parts[static_cast<size_t>(d.nparts++)] = {m->slot, m->position, sign};
+    d.varies = true;
   }
-  const Pose<double>& f = frames[m.slot];
-  u.value = f.x + f.R * m.position;
-  u.d1.block<3, 3>(0, 6 * m.slot) = Eigen::Matrix3d::Identity();
-  u.d1.block<3, 3>(0, 6 * m.slot + 3) = -f.R * hat<double>(m.position);
-  u.parts[0] = {m.slot, m.position, 1.0};
-  u.nparts = 1;
-  u.varies = true;
-  return u;
 }
 
-JointVector difference(const JointVector& b, const JointVector& a) {
-  JointVector d;
-  d.value = b.value - a.value;
-  d.d1 = b.d1 - a.d1;
-  d.varies = a.varies || b.varies;
-  for (int i = 0; i < b.nparts; ++i) d.parts[static_cast<size_t>(d.nparts++)] = b.parts[static_cast<size_t>(i)];
-  for (int i = 0; i < a.nparts; ++i) {
-    JointVector::Rotating r = a.parts[static_cast<size_t>(i)];
-    r.sign = -r.sign;
-    d.parts[static_cast<size_t>(d.nparts++)] = r;
-  }
-  return d;
-}
-
-JointVector world_axis(int i) {
-  JointVector u;
-  u.value = Eigen::Vector3d::Unit(i);
-  return u;
+/// The fixed world axes e_x, e_y, e_z.
+const std::array<JointVector, 3>& world_axes() {
+  static const std::array<JointVector, 3> e = [] {
+    std::array<JointVector, 3> v;
+    for (int i = 0; i < 3; ++i) v[static_cast<size_t>(i)].value = Eigen::Vector3d::Unit(i);
+    return v;
+  }();
+  return e;
 }
 
 /// H += c ∂²(u·v)/∂δ'∂δ on the n unknowns of the joint's nodes.
@@ -214,6 +322,13 @@ void add_dot_second(double c, const JointVector& u, const JointVector& v, const 
   rotating(v, u);
 }
 
+/// H += weight ∂²(equation)/∂δ'∂δ, the vectors indexed by MarkerVector.
+void add_equation_second(double weight, const SpatialJointEquation& e, const JointVector* const* vectors,
+                         const Pose<double>* frames, int n, Eigen::MatrixXd& H) {
+  for (const SpatialJointTerm& t : e.terms)
+    add_dot_second(t.coefficient * weight, *vectors[static_cast<int>(t.u)], *vectors[static_cast<int>(t.v)], frames, n, H);
+}
+
 }  // namespace
 
 void SpatialJoint::geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
@@ -223,68 +338,26 @@ void SpatialJoint::geometric_stiffness(const Eigen::VectorXd& q, double t, const
   const kernel_detail::Poses p = kernel_detail::poses(q, nf);
   const Pose<double>* frames = p.data();
   k.setZero(n, n);
-  const JointVector a[3] = {marker_axis(a_, 0, frames), marker_axis(a_, 1, frames), marker_axis(a_, 2, frames)};
-  const JointVector b[3] = {marker_axis(b_, 0, frames), marker_axis(b_, 1, frames), marker_axis(b_, 2, frames)};
-  const JointVector d = difference(marker_point(b_, frames), marker_point(a_, frames));
+  // The vectors the equations use, by MarkerVector (world axes: fixed).
+  const DriverEquations& dr = drivers();
+  const unsigned uses = uses_;
+  std::array<JointVector, 7> m;  // a1..b3, d: only those used are set
+  for (int i = 0; i < 3; ++i) {
+    if (uses & bit(MarkerVector(i))) set_marker_axis(m[static_cast<size_t>(i)], a_, i, frames);
+    if (uses & bit(MarkerVector(3 + i))) set_marker_axis(m[static_cast<size_t>(3 + i)], b_, i, frames);
+  }
+  if (uses & bit(MarkerVector::d)) set_marker_difference(m[6], a_, b_, frames);
+  const std::array<JointVector, 3>& e_xyz = world_axes();
+  const JointVector* v[10] = {&m[0], &m[1], &m[2], &m[3], &m[4], &m[5], &m[6], &e_xyz[0], &e_xyz[1], &e_xyz[2]};
   int e = 0;  // equation, in the order of operator()
-  auto dot = [&](const JointVector& u, const JointVector& v, double c = 1.0) {
-    add_dot_second(c * lambda[e], u, v, frames, n, k);
-  };
-  auto next = [&] { ++e; };
-  auto position = [&] {
-    for (int i = 0; i < 3; ++i) {
-      dot(world_axis(i), d);
-      next();
-    }
-  };
-  switch (type_) {
-    case SpatialJointType::Spherical: position(); break;
-    case SpatialJointType::Universal:
-      position();
-      dot(a[0], b[1]), next();
-      break;
-    case SpatialJointType::Revolute:
-      position();
-      dot(a[2], b[0]), next();
-      dot(a[2], b[1]), next();
-      break;
-    case SpatialJointType::Cylindrical:
-      dot(a[0], d), next();
-      dot(a[1], d), next();
-      dot(a[2], b[0]), next();
-      dot(a[2], b[1]), next();
-      break;
-    case SpatialJointType::Prismatic:
-      dot(a[0], d), next();
-      dot(a[1], d), next();
-      dot(a[2], b[0]), next();
-      dot(a[2], b[1]), next();
-      dot(a[0], b[1]), next();
-      break;
-    case SpatialJointType::Planar:
-      dot(a[2], d), next();
-      dot(a[2], b[0]), next();
-      dot(a[2], b[1]), next();
-      break;
-    case SpatialJointType::Fixed:
-      position();
-      dot(a[1], b[2]), next();
-      dot(a[2], b[0]), next();
-      dot(a[0], b[1]), next();
-      break;
-    case SpatialJointType::PointOnLine:
-      dot(a[0], d), next();
-      dot(a[1], d), next();
-      break;
-    case SpatialJointType::PointOnPlane: dot(a[2], d), next(); break;
-  }
-  if (angle_) {  // a1·(cos φ b2 − sin φ b1)
+  for (const SpatialJointEquation& eq : kind_->equations) add_equation_second(lambda[e++], eq, v, frames, n, k);
+  if (angle_) {  // cos φ (a1·b2) + sin φ (−a1·b1)
     const double phi = angle_->value(t);
-    dot(a[0], b[1], std::cos(phi));
-    dot(a[0], b[0], -std::sin(phi));
-    next();
+    add_equation_second(std::cos(phi) * lambda[e], dr.angle_cos, v, frames, n, k);
+    add_equation_second(std::sin(phi) * lambda[e], dr.angle_sin, v, frames, n, k);
+    ++e;
   }
-  if (displacement_) dot(b[2], d, -1.0), next();  // −b3·d − u(t)
+  if (displacement_) add_equation_second(lambda[e++], dr.displacement, v, frames, n, k);  // −b3·d − u(t)
 }
 
 void SpatialJoint::geometric_stiffness_by_ad(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,

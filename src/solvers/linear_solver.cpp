@@ -6,6 +6,8 @@
 #include <sstream>
 #include <string>
 
+#include "alphaflex/core/petsc_error.hpp"
+
 namespace alphaflex {
 namespace {
 
@@ -22,14 +24,13 @@ bool workspace_too_small(PetscInt info1) {
 
 
 LinearSolver::LinearSolver(MPI_Comm comm) : comm_(comm) {
-  PetscFunctionBeginUser;
-  PetscCallAbort(comm, KSPCreate(comm, &ksp_));
-  PetscCallAbort(comm, KSPSetType(ksp_, KSPPREONLY));
+  check_petsc(KSPCreate(comm, &ksp_), "KSPCreate");
+  check_petsc(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
   PC pc;
-  PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
-  PetscCallAbort(comm, PCSetType(pc, PCLU));
-  PetscCallAbort(comm, PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+  check_petsc(KSPGetPC(ksp_, &pc), "KSPGetPC");
+  check_petsc(PCSetType(pc, PCLU), "PCSetType");
+  check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  check_petsc(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
 }
 
 LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }

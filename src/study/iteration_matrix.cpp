@@ -8,31 +8,28 @@
 
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/petsc_error.hpp"
 #include "alphaflex/partition/subdomain.hpp"
 
 namespace alphaflex::study {
 namespace {
 
-void check(PetscErrorCode ierr, const char* what) {
-  if (ierr) throw SolverError(std::string("condition number of S_t: PETSc error in ") + what);
-}
-
 // The owned rows of A as (row, column, value) triplets, gathered on rank 0 into a dense matrix.
 Eigen::MatrixXd gather_dense(Mat A, int n, MPI_Comm comm) {
   PetscInt r0 = 0, r1 = 0;
-  check(MatGetOwnershipRange(A, &r0, &r1), "MatGetOwnershipRange");
+  check_petsc(MatGetOwnershipRange(A, &r0, &r1), "MatGetOwnershipRange (condition number of S_t)");
   std::vector<double> local;  // flattened triplets (row, col, value) as doubles
   for (PetscInt i = r0; i < r1; ++i) {
     PetscInt ncols = 0;
     const PetscInt* cols = nullptr;
     const PetscScalar* vals = nullptr;
-    check(MatGetRow(A, i, &ncols, &cols, &vals), "MatGetRow");
+    check_petsc(MatGetRow(A, i, &ncols, &cols, &vals), "MatGetRow (condition number of S_t)");
     for (PetscInt k = 0; k < ncols; ++k) {
       local.push_back(static_cast<double>(i));
       local.push_back(static_cast<double>(cols[k]));
       local.push_back(vals[k]);
     }
-    check(MatRestoreRow(A, i, &ncols, &cols, &vals), "MatRestoreRow");
+    check_petsc(MatRestoreRow(A, i, &ncols, &cols, &vals), "MatRestoreRow (condition number of S_t)");
   }
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
@@ -62,22 +59,22 @@ Eigen::MatrixXd gather_dense(Mat A, int n, MPI_Comm comm) {
 // MUMPS' condition numbers from its error analysis of one solve with A (RINFOG(10), (11)).
 void mumps_condition(Mat A, Vec b, Vec x, MPI_Comm comm, double& cond1, double& cond2) {
   KSP ksp = nullptr;
-  check(KSPCreate(comm, &ksp), "KSPCreate");
-  check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+  check_petsc(KSPCreate(comm, &ksp), "KSPCreate (condition number of S_t)");
+  check_petsc(KSPSetType(ksp, KSPPREONLY), "KSPSetType (condition number of S_t)");
   PC pc = nullptr;
-  check(KSPGetPC(ksp, &pc), "KSPGetPC");
-  check(PCSetType(pc, PCLU), "PCSetType");
-  check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-  check(KSPSetOperators(ksp, A, A), "KSPSetOperators");
-  check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+  check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC (condition number of S_t)");
+  check_petsc(PCSetType(pc, PCLU), "PCSetType (condition number of S_t)");
+  check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType (condition number of S_t)");
+  check_petsc(KSPSetOperators(ksp, A, A), "KSPSetOperators (condition number of S_t)");
+  check_petsc(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType (condition number of S_t)");
   Mat F = nullptr;
-  check(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix");
-  check(MatMumpsSetIcntl(F, 11, 1), "MatMumpsSetIcntl(11)");  // full error analysis in the solve
-  check(KSPSetUp(ksp), "KSPSetUp");
-  check(KSPSolve(ksp, b, x), "KSPSolve");
+  check_petsc(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix (condition number of S_t)");
+  check_petsc(MatMumpsSetIcntl(F, 11, 1), "MatMumpsSetIcntl(11) (condition number of S_t)");  // full error analysis in the solve
+  check_petsc(KSPSetUp(ksp), "KSPSetUp (condition number of S_t)");
+  check_petsc(KSPSolve(ksp, b, x), "KSPSolve (condition number of S_t)");
   PetscReal c1 = 0, c2 = 0;
-  check(MatMumpsGetRinfog(F, 10, &c1), "MatMumpsGetRinfog(10)");
-  check(MatMumpsGetRinfog(F, 11, &c2), "MatMumpsGetRinfog(11)");
+  check_petsc(MatMumpsGetRinfog(F, 10, &c1), "MatMumpsGetRinfog(10) (condition number of S_t)");
+  check_petsc(MatMumpsGetRinfog(F, 11, &c2), "MatMumpsGetRinfog(11) (condition number of S_t)");
   cond1 = c1;
   cond2 = c2;
   KSPDestroy(&ksp);
@@ -110,7 +107,7 @@ ConditionNumbers iteration_matrix_condition(const Model& model, const Mechanical
     AssemblyCoefficients cs = c;
     cs.row_scale = bh2;
     cs.multiplier_scale = 1.0 / bh2;
-    check(system.assemble(local, cs, ConstraintRows::Dynamic, true), "assembly");
+    check_petsc(system.assemble(local, cs, ConstraintRows::Dynamic, true), "assembly (condition number of S_t)");
     const Eigen::MatrixXd Ss = gather_dense(system.matrix(), out.unknowns, comm);
     // Which PETSc indices are multipliers (each owned by one rank).
     std::vector<int> is_multiplier(static_cast<size_t>(out.unknowns), 0);
@@ -137,11 +134,11 @@ ConditionNumbers iteration_matrix_condition(const Model& model, const Mechanical
     c.row_scale = bh2;
     c.multiplier_scale = 1.0 / bh2;
   }
-  check(system.assemble(local, c, ConstraintRows::Dynamic, true), "assembly");
+  check_petsc(system.assemble(local, c, ConstraintRows::Dynamic, true), "assembly (condition number of S_t)");
   Vec b = nullptr, x = nullptr;
-  check(VecDuplicate(system.residual(), &b), "VecDuplicate");
-  check(VecDuplicate(system.residual(), &x), "VecDuplicate");
-  check(VecSet(b, 1.0), "VecSet");
+  check_petsc(VecDuplicate(system.residual(), &b), "VecDuplicate (condition number of S_t)");
+  check_petsc(VecDuplicate(system.residual(), &x), "VecDuplicate (condition number of S_t)");
+  check_petsc(VecSet(b, 1.0), "VecSet (condition number of S_t)");
   mumps_condition(system.matrix(), b, x, comm, out.mumps_cond1, out.mumps_cond2);
   VecDestroy(&x);
   VecDestroy(&b);

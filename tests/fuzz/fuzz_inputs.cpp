@@ -1,19 +1,26 @@
 // Fuzz test of the input path: thousands of mutated scenes and meshes through read_scene_text and
 // the model builder, up to the point where the run would take its first step (run_simulation with
-// RunOptions::stop_after_start: partition, DOF map, assembly structure, solver, consistent start).
+// RunOptions::stop_after_start: partition, DOF map, assembly structure, solver, consistent start),
+// and mutated study files through the study-spec parser (study::read_study).
 //
-//   fuzz_inputs [--source DIR] [--work DIR] [--scene-cases N] [--msh-cases N] [--seed N]
-//               [--time-limit S] [--case ID] [--verbose]
+//   fuzz_inputs [--source DIR] [--work DIR] [--scene-cases N] [--msh-cases N] [--study-cases N]
+//               [--seed N] [--time-limit S] [--case ID] [--verbose]
 //
 // Seeds: every *.yaml under inputs/ and tests/, and meshes: meshes/*.msh and a .msh written here
 // by gmsh from every meshes/*.geo that a seed scene uses (MSH 4.1, and 2.2 for the small ones),
 // each read through the scene that uses its .geo, with `mesh:` pointing at the mutated file.
+// Study seeds: inputs/studies/*.yaml and tests/study/**/*.yaml (IDs "study:PATH#K"), each mutated
+// like a scene and read by read_study with the scene of inputs/ whose name starts its own (else
+// the slider-crank), or as the scene itself when the file is a scene with a study: block. The
+// mutated file is written at the seed's own relative place in a copy of the source tree's
+// directories (WORK/study_tree, the rest of the tree linked), so that its relative paths (the
+// reference CSV, the variants' scenes) resolve as they do for the seed.
 // Case ID "inputs/andrews.yaml#17" is mutation 17 of that seed; its random choices come from
 // (--seed, ID) only, so `--case ID` reruns one case exactly (the failure report prints the
 // command, and writes the mutated files under WORK/failures).
 //
-// A case passes if the scene is accepted, or rejected with an InputError whose message starts with
-// the scene's file name, then ":LINE" optionally, then ": KEY: what" (a key, a mesh entity, a
+// A case passes if the scene (study) is accepted, or rejected with an InputError whose message
+// starts with the scene's (study file's) name, then ":LINE" optionally, then ": KEY: what" (a key, a mesh entity, a
 // joint, ...: the part before the next ": "). It fails on any other exception type (SolverError,
 // std::out_of_range, YAML::Exception, ...), on a message that does not start with the file name
 // or names nothing, on a crash (signal or sanitizer report: the case is printed before the process
@@ -34,6 +41,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -46,6 +54,7 @@
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/io/scene.hpp"
+#include "alphaflex/study/study_spec.hpp"
 #include "mutator.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -66,22 +75,27 @@ namespace {
 
 struct Options {
   std::string source = ALPHAFLEX_SOURCE_DIR;
-  std::string work = "fuzz_work";
+  /// Scratch files and failures; by default under the system's temporary directory, not in the
+  /// working directory (which may be the source tree).
+  std::string work = (fs::temp_directory_path() / "alphaflex_fuzz_work").string();
   int scene_cases = 40;  ///< mutated cases per scene seed
   int msh_cases = 40;    ///< mutated cases per mesh seed
+  int study_cases = 40;  ///< mutated cases per study seed
   std::uint64_t seed = 20240601;
   double time_limit = 10.0;  ///< s per case
   std::string only;          ///< run this case only
   bool verbose = false;
 };
 
-/// What is being fuzzed: a scene file, or a mesh read through a scene that uses it.
+/// What is being fuzzed: a scene file, a mesh read through a scene that uses it, or a study file.
 struct Seed {
   std::string id;     ///< path relative to the source tree (case IDs, messages)
-  std::string label;  ///< the scene's file name as the reader sees it (absolute path)
-  std::string text;   ///< the scene, or the .msh
+  std::string label;  ///< the scene's (study's) file name as the reader sees it (absolute path)
+  std::string text;   ///< the scene, the .msh, or the study
   bool msh = false;
   YAML::Node scene;   ///< msh seeds: the scene whose mesh.file is replaced by the mutated .msh
+  bool study = false;       ///< a study file: the mutated text is written to `label`, read by read_study
+  std::string study_scene;  ///< study seeds: the scene it studies (empty: the file is that scene)
 };
 
 std::string read_file(const fs::path& p) {
@@ -216,6 +230,59 @@ void write_msh(const fs::path& geo, const fs::path& out, double version) {
   gmsh::finalize();
 }
 
+/// Study seeds (see the head of this file), their mutated files to be written under `tree`: a copy
+/// of the directories that hold a seed, every other entry of those directories linked to the
+/// source tree's.
+std::vector<Seed> study_seeds(const fs::path& src, const fs::path& tree) {
+  std::vector<fs::path> files;
+  for (const auto& p : yaml_files(src / "inputs" / "studies")) files.push_back(p);
+  for (const auto& p : yaml_files(src / "tests" / "study")) files.push_back(p);
+  std::vector<fs::path> scenes;  // inputs/*.yaml, longest name first
+  for (const auto& e : fs::directory_iterator(src / "inputs"))
+    if (e.is_regular_file() && e.path().extension() == ".yaml") scenes.push_back(e.path());
+  std::sort(scenes.begin(), scenes.end(), [](const fs::path& a, const fs::path& b) {
+    return a.stem().string().size() != b.stem().string().size() ? a.stem().string().size() > b.stem().string().size() : a < b;
+  });
+  fs::remove_all(tree);
+  std::vector<fs::path> real;  // directories of the tree that are copies (relative), parents first
+  for (const auto& f : files)
+    for (fs::path d = fs::relative(f.parent_path(), src); !d.empty() && d != "."; d = d.parent_path())
+      if (std::find(real.begin(), real.end(), d) == real.end()) real.push_back(d);
+  real.push_back("");
+  for (const auto& d : real) fs::create_directories(tree / d);
+  for (const auto& d : real)
+    for (const auto& e : fs::directory_iterator(src / d)) {
+      const fs::path rel = fs::relative(e.path(), src);
+      const bool is_real = std::find(real.begin(), real.end(), rel) != real.end();
+      const bool is_seed = std::find(files.begin(), files.end(), e.path()) != files.end();
+      if (!is_real && !is_seed && !fs::exists(fs::symlink_status(tree / rel))) fs::create_symlink(e.path(), tree / rel);
+    }
+  std::vector<Seed> out;
+  for (const auto& f : files) {
+    Seed s;
+    s.study = true;
+    s.id = "study:" + fs::relative(f, src).string();
+    s.label = (tree / fs::relative(f, src)).string();
+    s.text = read_file(f);
+    YAML::Node root;
+    try {
+      root = YAML::Load(s.text);
+    } catch (const YAML::Exception&) {
+    }
+    const bool scene_with_study = root.IsMap() && root["study"] && root.size() > 1;
+    if (!scene_with_study) {
+      s.study_scene = (src / "inputs" / "slider_crank.yaml").string();
+      for (const auto& sc : scenes)
+        if (f.stem().string().rfind(sc.stem().string(), 0) == 0) {
+          s.study_scene = sc.string();
+          break;
+        }
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
 std::vector<Seed> collect_seeds(const Options& o) {
   const fs::path src = fs::canonical(o.source);
   std::vector<Seed> seeds;
@@ -267,6 +334,7 @@ std::vector<Seed> collect_seeds(const Options& o) {
     s.scene = YAML::LoadFile(it->second.string());
     seeds.push_back(s);
   }
+  for (Seed& s : study_seeds(src, fs::absolute(o.work) / "study_tree")) seeds.push_back(std::move(s));
   return seeds;
 }
 
@@ -298,14 +366,11 @@ std::string bad_message(const std::string& msg, const std::string& label) {
   return {};
 }
 
-Outcome run_case(const std::string& text, const std::string& label, std::string& detail) {
+/// The outcome of reading a case (`read` throws what the reader throws): accepted, rejected with
+/// a good InputError message (starting with `label`), or failed (`detail` says why).
+Outcome verdict(const std::function<void()>& read, const std::string& label, std::string& detail) {
   try {
-    Scene scene = read_scene_text(text, label);
-    RunOptions ro;
-    ro.write_results = false;
-    ro.verbose = false;
-    ro.stop_after_start = true;
-    run_simulation(scene, ro, MPI_COMM_SELF);
+    read();
     return Outcome::Accepted;
   } catch (const InputError& e) {
     detail = e.what();
@@ -320,6 +385,30 @@ Outcome run_case(const std::string& text, const std::string& label, std::string&
     detail = "unexpected exception of a type that is not std::exception";
     return Outcome::Failed;
   }
+}
+
+/// A scene case: read, then started (no step).
+Outcome run_case(const std::string& text, const std::string& label, std::string& detail) {
+  return verdict(
+      [&] {
+        Scene scene = read_scene_text(text, label);
+        RunOptions ro;
+        ro.write_results = false;
+        ro.verbose = false;
+        ro.stop_after_start = true;
+        run_simulation(scene, ro, MPI_COMM_SELF);
+      },
+      label, detail);
+}
+
+/// A study case: the mutated file is at seed.label already; read_study with the seed's scene.
+Outcome run_study_case(const Seed& seed, std::string& detail) {
+  return verdict(
+      [&] {
+        if (seed.study_scene.empty()) study::read_study(seed.label, "");
+        else study::read_study(seed.study_scene, seed.label);
+      },
+      seed.label, detail);
 }
 
 std::string safe_name(std::string id) {
@@ -357,6 +446,7 @@ class Fuzzer {
       em << scene;
       scene_text = em.c_str();
     }
+    if (seed.study) write_file(seed.label, m.text);
     std::ostringstream banner;
     banner << "  case " << id << " (seed " << o_.seed << ")\n";
     for (const auto& l : m.log) banner << "    " << l << "\n";
@@ -366,7 +456,7 @@ class Fuzzer {
     std::string detail;
     g_case_start_ns = now_ns();
     const auto t0 = std::chrono::steady_clock::now();
-    const Outcome out = run_case(scene_text, seed.label, detail);
+    const Outcome out = seed.study ? run_study_case(seed, detail) : run_case(scene_text, seed.label, detail);
     const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     g_case_start_ns = 0;
     slowest_ = std::max(slowest_, dt);
@@ -380,7 +470,9 @@ class Fuzzer {
       write_file(keep.string() + ".yaml", scene_text);
       if (seed.msh) fs::copy_file(msh_path, keep.string() + ".msh", fs::copy_options::overwrite_existing);
       std::cout << "FUZZ FAILURE: " << detail << "\n" << banner.str() << "  files: " << keep.string()
-                << (seed.msh ? ".yaml, .msh" : ".yaml") << " (scene file name in messages: " << seed.label << ")\n"
+                << (seed.msh ? ".yaml, .msh" : ".yaml") << " (" << (seed.study ? "study" : "scene")
+                << " file name in messages: " << seed.label
+                << (seed.study && !seed.study_scene.empty() ? ", its scene " + seed.study_scene : std::string()) << ")\n"
                 << std::endl;
     } else if (o_.verbose) {
       std::cout << id << ": " << (out == Outcome::Accepted ? "accepted" : "rejected: " + detail.substr(0, 200)) << " ("
@@ -400,7 +492,7 @@ class Fuzzer {
 
 int usage(const char* why) {
   std::cerr << "fuzz_inputs: " << why
-            << "\nusage: fuzz_inputs [--source DIR] [--work DIR] [--scene-cases N] [--msh-cases N] [--seed N]"
+            << "\nusage: fuzz_inputs [--source DIR] [--work DIR] [--scene-cases N] [--msh-cases N] [--study-cases N] [--seed N]"
                " [--time-limit S] [--case ID] [--verbose]\n";
   return 2;
 }
@@ -420,6 +512,7 @@ int main(int argc, char** argv) {
       else if (a == "--work") o.work = value();
       else if (a == "--scene-cases") o.scene_cases = std::stoi(value());
       else if (a == "--msh-cases") o.msh_cases = std::stoi(value());
+      else if (a == "--study-cases") o.study_cases = std::stoi(value());
       else if (a == "--seed") o.seed = std::stoull(value());
       else if (a == "--time-limit") o.time_limit = std::stod(value());
       else if (a == "--case") o.only = value();
@@ -447,7 +540,8 @@ int main(int argc, char** argv) {
     }
     install_crash_handlers();
     Fuzzer fuzzer(o);
-    Tally scenes, meshes;
+    Tally scenes, meshes, studies;
+    const auto tally = [&](const Seed& s) -> Tally& { return s.msh ? meshes : s.study ? studies : scenes; };
     {
       const Watchdog watchdog(o.time_limit);
       bool found = o.only.empty();
@@ -459,11 +553,11 @@ int main(int argc, char** argv) {
         if (!o.only.empty()) {
           if (s.id != only_seed || only_k < 0) continue;
           found = true;
-          fuzzer.run(s, only_k, s.msh ? meshes : scenes);
+          fuzzer.run(s, only_k, tally(s));
           continue;
         }
-        const int n = s.msh ? o.msh_cases : o.scene_cases;
-        for (int k = 0; k <= n; ++k) fuzzer.run(s, k, s.msh ? meshes : scenes);
+        const int n = s.msh ? o.msh_cases : s.study ? o.study_cases : o.scene_cases;
+        for (int k = 0; k <= n; ++k) fuzzer.run(s, k, tally(s));
       }
       if (!found) {
         std::cerr << "fuzz_inputs: no case '" << o.only << "' (IDs are SEED#K, e.g. inputs/andrews.yaml#3)" << std::endl;
@@ -473,17 +567,18 @@ int main(int argc, char** argv) {
     // A report from here on (LeakSanitizer runs at exit) belongs to no case.
     set_banner("  (no case: after the last one, at exit)\n");
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    int nscene = 0, nmsh = 0;
-    for (const Seed& s : seeds) (s.msh ? nmsh : nscene)++;
+    int nscene = 0, nmsh = 0, nstudy = 0;
+    for (const Seed& s : seeds) (s.msh ? nmsh : s.study ? nstudy : nscene)++;
+    const auto line = [](const char* what, const Tally& t) {
+      return "  " + std::string(what) + ": " + std::to_string(t.cases) + " cases, " + std::to_string(t.accepted) +
+             " accepted, " + std::to_string(t.rejected) + " rejected, " + std::to_string(t.failed) + " failed\n";
+    };
     std::cout << "fuzz_inputs: seed " << o.seed << ": " << nscene << " scene seeds x " << o.scene_cases << " mutations, "
-              << nmsh << " mesh seeds x " << o.msh_cases << " mutations (each seed also unmutated)\n"
-              << "  scenes: " << scenes.cases << " cases, " << scenes.accepted << " accepted, " << scenes.rejected
-              << " rejected, " << scenes.failed << " failed\n"
-              << "  meshes: " << meshes.cases << " cases, " << meshes.accepted << " accepted, " << meshes.rejected
-              << " rejected, " << meshes.failed << " failed\n"
-              << "  " << wall << " s in all; slowest case " << fuzzer.slowest() << " s (" << fuzzer.slowest_id() << ")"
+              << nmsh << " mesh seeds x " << o.msh_cases << " mutations, " << nstudy << " study seeds x "
+              << o.study_cases << " mutations (each seed also unmutated)\n"
+              << line("scenes", scenes) << line("meshes", meshes) << line("studies", studies) << "  " << wall << " s in all; slowest case " << fuzzer.slowest() << " s (" << fuzzer.slowest_id() << ")"
               << std::endl;
-    if (scenes.failed + meshes.failed > 0) status = 1;
+    if (scenes.failed + meshes.failed + studies.failed > 0) status = 1;
   }
   PetscFinalize();
   return status;

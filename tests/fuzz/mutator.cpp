@@ -247,7 +247,7 @@ void scene_mutation(Lines& l, std::string& text, Rng& rng, std::vector<std::stri
     if (line_mutation(l, rng, log)) return;
   } else if (kind < 40) {  // a number's value
     if (replace_number(l, rng, log, kSceneValues)) return;
-  } else if (kind < 52) {  // a key renamed: to another key of the file, or misspelt
+  } else if (kind < 52) {  // a key renamed: to another key of the file, a map or list, or misspelt
     const size_t i = line_where(l, rng, [](const std::string& s) { return !keys(s).empty(); });
     if (i != std::string::npos) {
       const auto ks = keys(l.lines[i]);
@@ -259,6 +259,10 @@ void scene_mutation(Lines& l, std::string& text, Rng& rng, std::vector<std::stri
         const auto kj = keys(l.lines[j]);
         const auto [bj, ej] = rng.pick(kj);
         to = l.lines[j].substr(bj, ej - bj);
+      } else if (rng.percent(10)) {
+        // A flow map or list used as a key (`{mode: 1}: ...`): a reader that takes every key for
+        // a string fails on it with a conversion error.
+        to = rng.percent(50) ? "{" + name + ": 1}" : "[" + name + "]";
       } else {
         to = name;
         const size_t at = rng.below(to.size());

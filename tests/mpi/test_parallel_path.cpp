@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <random>
 
 #include "alphaflex/app/simulation.hpp"
@@ -282,8 +283,15 @@ TEST(ParallelHdf5, EveryRankWritesItsRowsWhereTheOneRankFileHasThem) {
   // and by a one-rank writer on rank 0: every dataset, the integers and the doubles, must be equal
   // bit for bit (each value is computed from the same local data on both sides), and so must the
   // XDMF index. Row placement errors would show as O(1) differences.
-  namespace fs = std::filesystem;
-  const std::string base = (fs::current_path() / ("hdf5_np" + std::to_string(world_size()))).string();
+  // A fresh directory made by rank 0 (test_support.hpp), its name sent to the others; removed
+  // after the last barrier below.
+  std::optional<TestOutputDir> dir;
+  if (world_rank() == 0) dir.emplace("hdf5_np" + std::to_string(world_size()));
+  int len = dir ? static_cast<int>(dir->path().size()) : 0;
+  MPI_Bcast(&len, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  std::string base(static_cast<size_t>(len), '\0');
+  if (dir) base = dir->path();
+  MPI_Bcast(base.data(), len, MPI_CHAR, 0, PETSC_COMM_WORLD);
   for (const Case& c : kCases) {
     SCOPED_TRACE(c.scene);
     Scene sc = read(c);

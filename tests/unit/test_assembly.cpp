@@ -69,22 +69,18 @@ TEST_P(AssembledTangent, IterationMatrixIsDerivativeOfResidualAlongNewtonUpdate)
       S(i, j) = v;
     }
 
-  const double eps = 1e-7;
-  Eigen::MatrixXd fd(n, n);
-  for (int j = 0; j < n; ++j) {
-    auto shifted = [&](double d) {
-      MechanicalState t = s;
-      if (j < nd) {
-        t.q[j] += d;
-        t.v[j] += c.damping * d;
-        t.qdd[j] += c.mass * d;
-      } else {
-        t.lambda[j - nd] += c.multiplier_scale * d;
-      }
-      return dense_residual(sys, t, c);
-    };
-    fd.col(j) = (shifted(eps) - shifted(-eps)) / (2 * eps);
-  }
+  // Central differences (h = 1e-7) along the Newton update: δq = d, δq̇ = damping d, δq̈ = mass d,
+  // δλ = multiplier_scale d.
+  const Eigen::MatrixXd fd = central_differences(
+      [&](const Eigen::VectorXd& d) {
+        MechanicalState t = s;
+        t.q += d.head(nd);
+        t.v += c.damping * d.head(nd);
+        t.qdd += c.mass * d.head(nd);
+        t.lambda += c.multiplier_scale * d.tail(nm);
+        return dense_residual(sys, t, c);
+      },
+      Eigen::VectorXd::Zero(n), fixed_fd_step(1e-7));
   const double err = (S - fd).cwiseAbs().maxCoeff() / S.cwiseAbs().maxCoeff();
   RecordProperty("relative_error", std::to_string(err));
   EXPECT_LT(err, 1e-6) << GetParam();

@@ -78,35 +78,14 @@ LocalResidual tangents(const Element& e, const LocalState& s) {
   return out;
 }
 
-/// q ∘ exp(dx) node by node (node.hpp's retraction).
-VectorXd retracted(const VectorXd& q, const VectorXd& dx) {
-  VectorXd out(14);
-  for (int k = 0; k < 2; ++k) retract(NodeKind::Frame3D, q.data() + 7 * k, dx.data() + 6 * k, out.data() + 7 * k);
-  return out;
-}
-
-/// Central differences on the group: column j = [r(q ∘ exp(h_j e_j)) − r(q ∘ exp(−h_j e_j))]/(2h_j),
-/// h = 1e-6 L0 for translations and 1e-6 rad for rotations; likewise on v and q̈ (vector spaces).
-enum class Wrt { q, v, qdd };
+/// Central differences of r (test_support.hpp): on the group for q, h = 1e-6 L0 for translations
+/// and 1e-6 rad for rotations; h = 1e-6 on v and q̈ (vector spaces).
+using testing::Wrt;
 MatrixXd central_differences(const Element& e, const LocalState& s, Wrt wrt, double length) {
-  MatrixXd D(12, 12);
-  for (int j = 0; j < 12; ++j) {
-    const double h = 1e-6 * (j % 6 < 3 && wrt == Wrt::q ? length : 1.0);
-    LocalState p = s, m = s;
-    VectorXd dx = VectorXd::Zero(12);
-    dx[j] = h;
-    if (wrt == Wrt::q) {
-      p.q = retracted(s.q, dx);
-      m.q = retracted(s.q, -dx);
-    } else {
-      VectorXd& vp = wrt == Wrt::v ? p.v : p.qdd;
-      VectorXd& vm = wrt == Wrt::v ? m.v : m.qdd;
-      vp += dx;
-      vm -= dx;
-    }
-    D.col(j) = (residual(e, p) - residual(e, m)) / (2.0 * h);
-  }
-  return D;
+  const testing::VectorFunction r_at = testing::element_residual_of(e, s, wrt);
+  if (wrt == Wrt::q)
+    return testing::central_differences_on_frames(r_at, s.q, [&](int j, double) { return 1e-6 * (j % 6 < 3 ? length : 1.0); });
+  return testing::central_differences(r_at, testing::variable(s, wrt), testing::fixed_fd_step(1e-6));
 }
 
 double relative_error(const MatrixXd& exact, const MatrixXd& approx) { return (approx - exact).norm() / exact.norm(); }
@@ -187,7 +166,7 @@ TEST(BeamTangents, MatchCentralDifferencesOnTheGroup) {
           dx.segment<3>(6 * k) = random_vector(rng, 0.15 * L);
           dx.segment<3>(6 * k + 3) = random_vector(rng, 0.6 / std::sqrt(3.0));
         }
-        s.q = retracted(q_ref, dx);
+        s.q = testing::retracted_frames(q_ref, dx);
         const Matrix3d Q = random_rotation(rng);
         const Vector3d c = random_vector(rng, 1.0);
         for (int k = 0; k < 2; ++k) {
@@ -221,12 +200,8 @@ TEST(BeamTangents, MatchCentralDifferencesOnTheGroup) {
 
       // Mutation 1: K_material = L0 Bᵀ C B with B = ∂ε/∂δ (central differences of the strain):
       // the geometric stiffness Σ_k (C ε)_k L0 ∂²ε_k is missing.
-      MatrixXd B(6, 12);
-      for (int j = 0; j < 12; ++j) {
-        VectorXd dx = VectorXd::Zero(12);
-        dx[j] = 1e-6;
-        B.col(j) = (beam.strain(retracted(s.q, dx)) - beam.strain(retracted(s.q, -dx))) / 2e-6;
-      }
+      const MatrixXd B = testing::central_differences_on_frames(
+          [&](const VectorXd& x) { return VectorXd(beam.strain(x)); }, s.q, testing::fixed_fd_step(1e-6));
       const MatrixXd Kmat = beam.reference_length() * B.transpose() * beam.section().stiffness().asDiagonal() * B;
       // Mutation 2: C without −(J̄Ω̄(s))^ (the derivative of Ω̄ × J̄Ω̄ through J̄Ω̄).
       MatrixXd Cmut = t.C;
@@ -376,7 +351,7 @@ TEST(BeamElasticForces, ClosedFormEqualsNestedADOfTheEnergy) {
         dx.segment<3>(6 * k) = random_vector(rng, 0.2 * sp.beam.reference_length());
         dx.segment<3>(6 * k + 3) = random_vector(rng, 0.3 * (1 + sample % 3));
       }
-      VectorXd q = retracted(q_ref, dx);
+      VectorXd q = testing::retracted_frames(q_ref, dx);
       const Matrix3d Q = random_rotation(rng);
       const Vector3d c = random_vector(rng, 2.0);
       for (int k = 0; k < 2; ++k) {
@@ -419,7 +394,7 @@ TEST(BeamStrain, IsObjective) {
       dx.segment<3>(6 * k) = random_vector(rng, 0.2);
       dx.segment<3>(6 * k + 3) = random_vector(rng, 0.5);
     }
-    const VectorXd q = retracted(configuration(sp.a, sp.b), dx);
+    const VectorXd q = testing::retracted_frames(configuration(sp.a, sp.b), dx);
     const Matrix3d Q = random_rotation(rng);
     const Vector3d c = random_vector(rng, 3.0);
     VectorXd qm(14);
@@ -759,7 +734,7 @@ TEST(BeamOutput, NamesAndValuesAreSectionForcesThenStrains) {
   EXPECT_STREQ(sp.beam.type(), "beam");
   VectorXd dx = VectorXd::Zero(12);
   dx << 0.01, -0.02, 0.03, 0.1, -0.05, 0.2, 0.02, 0.01, -0.01, -0.1, 0.3, 0.05;
-  const VectorXd q = retracted(configuration(sp.a, sp.b), dx);
+  const VectorXd q = testing::retracted_frames(configuration(sp.a, sp.b), dx);
   VectorXd out;
   sp.beam.output(state(q), out);
   ASSERT_EQ(out.size(), 12);

@@ -52,6 +52,27 @@ TEST(Diagnostics, BarPinnedAtBothEndsHasOneRedundantEquation) {
   EXPECT_EQ(red[0].depends_on.size(), 1u);
 }
 
+// A spherical joint where a revolute one already holds the body repeats its three point equations;
+// they are named by the joint table's equation names (joints/spatial_joints.cpp).
+TEST(Diagnostics, RedundantSpatialJointEquationsAreNamed) {
+  const char* yaml = R"(
+dimension: 3
+bodies:
+  - {name: crank, type: rigid_body, mass: 1, inertia: [1e-3, 1e-2, 1e-2], position: [0.5, 0, 0]}
+joints:
+  - {name: hinge, type: revolute, body1: crank, body2: ground, location: [0, 0, 0], axis: [0, 0, 1]}
+  - {name: ball, type: spherical, body1: crank, body2: ground, location: [0, 0, 0]}
+)";
+  Scene sc = read_scene_text(yaml, "crank.yaml");
+  const auto red = find_redundant_constraints(*sc.model, sc.model->initial_state());
+  ASSERT_EQ(red.size(), 3u);
+  const std::string why = diagnose_singular_system(*sc.model, sc.model->initial_state());
+  for (const char* e : {"equation 1 (x)", "equation 2 (y)", "equation 3 (z)"})
+    EXPECT_NE(why.find(std::string("joint 'ball' (spherical) ") + e + " is a combination of equations of 'hinge'"),
+              std::string::npos)
+        << why;
+}
+
 // A massless point hanging on one revolute joint is fixed; a second massless point attached to
 // nothing has two free coordinates on which neither mass nor joint acts.
 TEST(Diagnostics, MasslessPointWithoutJointIsNamed) {

@@ -17,6 +17,7 @@
 #include "alphaflex/model/element.hpp"
 #include "alphaflex/model/node.hpp"
 #include "alphaflex/model/planar_marker.hpp"
+#include "test_support.hpp"
 
 using namespace alphaflex;
 
@@ -75,29 +76,12 @@ LocalResidual tangents(const Element& e, const LocalState& s) {
   return out;
 }
 
-enum class Wrt { q, v, qdd };
+using alphaflex::testing::Wrt;
 
-Eigen::VectorXd& variable(LocalState& s, Wrt w) {
-  switch (w) {
-    case Wrt::q: return s.q;
-    case Wrt::v: return s.v;
-    case Wrt::qdd: return s.qdd;
-  }
-  return s.q;
-}
-
-/// Central difference ∂r/∂x, x ∈ {q, q̇, q̈}.
+/// Central difference ∂r/∂x, x ∈ {q, q̇, q̈} (test_support.hpp's step rule h = 1e-6 max(1, |x_j|)).
 Eigen::MatrixXd fd_jacobian(const Element& e, const LocalState& s, Wrt w) {
-  const int n = static_cast<int>(s.q.size());
-  Eigen::MatrixXd J(n, n);
-  for (int j = 0; j < n; ++j) {
-    LocalState plus = s, minus = s;
-    const double h = 1e-6 * std::max(1.0, std::abs(variable(plus, w)[j]));
-    variable(plus, w)[j] += h;
-    variable(minus, w)[j] -= h;
-    J.col(j) = (residual(e, plus) - residual(e, minus)) / (2.0 * h);
-  }
-  return J;
+  return alphaflex::testing::central_differences(alphaflex::testing::element_residual_of(e, s, w),
+                                                  alphaflex::testing::variable(s, w));
 }
 
 /// ‖A − A_fd‖ / ‖A‖, with ‖A‖ floored at 1e-3 of the element's largest tangent so that a tangent

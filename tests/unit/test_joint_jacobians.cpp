@@ -15,6 +15,7 @@
 #include "alphaflex/model/constraint.hpp"
 #include "alphaflex/model/node.hpp"
 #include "alphaflex/model/planar_marker.hpp"
+#include "test_support.hpp"
 
 using namespace alphaflex;
 
@@ -190,19 +191,8 @@ Eigen::MatrixXd phi_q_of(const Constraint& c, const Eigen::VectorXd& q) {
   return phi_q;
 }
 
-/// Central-difference ∂f/∂q column by column.
-Eigen::MatrixXd fd_jacobian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& q) {
-  const Eigen::VectorXd f0 = f(q);
-  Eigen::MatrixXd J(f0.size(), q.size());
-  for (int j = 0; j < q.size(); ++j) {
-    const double h = 1e-6 * std::max(1.0, std::abs(q[j]));
-    Eigen::VectorXd qp = q, qm = q;
-    qp[j] += h;
-    qm[j] -= h;
-    J.col(j) = (f(qp) - f(qm)) / (2.0 * h);
-  }
-  return J;
-}
+/// Central-difference ∂f/∂q column by column, h = 1e-6 max(1, |q_j|) (test_support.hpp).
+using alphaflex::testing::central_differences;
 
 /// d²/ds² Φ(q + s v) at s = 0: central second difference, Richardson-extrapolated (O(h⁴)).
 Eigen::VectorXd fd_second_derivative_along(const Constraint& c, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
@@ -242,7 +232,7 @@ void check_constraint_jacobian(const JointCase& c, unsigned seed) {
     ASSERT_EQ(phi.size(), c.joint->size());
     ASSERT_EQ(phi_q.rows(), c.joint->size());
     ASSERT_EQ(phi_q.cols(), c.n);
-    const Eigen::MatrixXd fd = fd_jacobian([&](const Eigen::VectorXd& x) { return phi_of(*c.joint, x); }, q);
+    const Eigen::MatrixXd fd = central_differences([&](const Eigen::VectorXd& x) { return phi_of(*c.joint, x); }, q);
     const double d = relative_discrepancy(phi_q, fd, 0.0);
     worst = std::max(worst, d);
     EXPECT_LT(d, kRelTol) << "Φ_q analytic:\n" << phi_q.format(kFmt) << "\nFD:\n" << fd.format(kFmt)
@@ -262,7 +252,7 @@ void check_geometric_stiffness(const JointCase& c, unsigned seed) {
     c.joint->geometric_stiffness(q, 0.0, lambda, k);
     ASSERT_EQ(k.rows(), c.n);
     ASSERT_EQ(k.cols(), c.n);
-    const Eigen::MatrixXd fd = fd_jacobian(
+    const Eigen::MatrixXd fd = central_differences(
         [&](const Eigen::VectorXd& x) { return (phi_q_of(*c.joint, x).transpose() * lambda).eval(); }, q);
     // Φ_q is O(1) here: floor the norm at 1e-3 |λ| for configurations where k nearly vanishes.
     const double d = relative_discrepancy(k, fd, 1e-3 * lambda.norm());

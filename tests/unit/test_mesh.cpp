@@ -15,6 +15,7 @@
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/mesh/gmsh_reader.hpp"
+#include "test_support.hpp"
 
 namespace alphaflex {
 namespace {
@@ -24,29 +25,10 @@ namespace fs = std::filesystem;
 std::string mesh_path(const std::string& name) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/meshes/" + name; }
 
 /// A directory of its own per test (tests may run in parallel processes), removed at the end.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("alphaflex_mesh_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
-             std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = (path_ / name).string();
-    std::ofstream(p) << text;
-    return p;
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
+struct TempDir : testing::TestOutputDir {
+  TempDir()
+      : TestOutputDir("mesh_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name()) +
+                      "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name()) {}
 };
 
 /// The InputError message of `f` (the test fails if it throws nothing or something else).

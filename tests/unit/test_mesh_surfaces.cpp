@@ -14,6 +14,7 @@
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/mesh/gmsh_reader.hpp"
+#include "test_support.hpp"
 
 namespace alphaflex {
 namespace {
@@ -23,11 +24,8 @@ namespace fs = std::filesystem;
 std::string mesh_path(const std::string& name) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/meshes/" + name; }
 
 std::string write_temp(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / ("alphaflex_surf_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string p = (dir / name).string();
-  std::ofstream(p) << text;
-  return p;
+  static const testing::TestOutputDir dir("surf");  // removed at exit
+  return dir.write(name, text);
 }
 
 std::string error_of(const std::string& path) {

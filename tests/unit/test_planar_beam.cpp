@@ -74,20 +74,11 @@ LocalResidual tangents(const Element& e, const LocalState& s) {
   return out;
 }
 
-/// Central differences of r with respect to q, q̇ or q̈ (vector spaces), h = 1e-6 max(1, |x_j|).
-enum class Wrt { q, v, qdd };
+/// Central differences of r with respect to q, q̇ or q̈ (vector spaces; test_support.hpp's step
+/// rule h = 1e-6 max(1, |x_j|)).
+using testing::Wrt;
 MatrixXd central_differences(const Element& e, const LocalState& s, Wrt wrt) {
-  MatrixXd D(6, 6);
-  for (int j = 0; j < 6; ++j) {
-    LocalState p = s, m = s;
-    VectorXd& xp = wrt == Wrt::q ? p.q : wrt == Wrt::v ? p.v : p.qdd;
-    VectorXd& xm = wrt == Wrt::q ? m.q : wrt == Wrt::v ? m.v : m.qdd;
-    const double h = 1e-6 * std::max(1.0, std::abs(xp[j]));
-    xp[j] += h;
-    xm[j] -= h;
-    D.col(j) = (residual(e, p) - residual(e, m)) / (2.0 * h);
-  }
-  return D;
+  return testing::central_differences(testing::element_residual_of(e, s, wrt), testing::variable(s, wrt));
 }
 
 double relative_error(const MatrixXd& exact, const MatrixXd& approx) { return (approx - exact).norm() / exact.norm(); }

@@ -4,8 +4,6 @@
 // negative last step.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-
 #include "test_support.hpp"
 
 namespace alphaflex::testing {
@@ -25,8 +23,8 @@ RunSummary run_to(const std::string& outdir, const std::vector<std::string>& ove
 // [0, 0.2] carried on by h = 5e-4, so it differs from a run at h = 5e-4 throughout by no more
 // than the h = 1e-3 run itself does (errors O(h²), Arnold & Brüls 2007, Sec. 4).
 TEST(Restart, WithAnotherStepSizeCountsTheStepsLeftFromTheCheckpointTime) {
-  const std::string dir = (std::filesystem::temp_directory_path() / "alphaflex_restart_h").string();
-  std::filesystem::remove_all(dir);
+  const TestOutputDir out("restart_h");
+  const std::string& dir = out.path();
   run_to(dir, {"solver.t_end=0.2", "solver.h=1e-3", "output.hdf5=off"}, "");
   const RunSummary restarted =
       run_to(dir, {"solver.t_end=0.3", "solver.h=5e-4", "output.hdf5=off"}, dir + "/slider_crank.checkpoint.h5");
@@ -39,7 +37,6 @@ TEST(Restart, WithAnotherStepSizeCountsTheStepsLeftFromTheCheckpointTime) {
   std::printf("|q - q(h = 5e-4)|: restarted %.3e, h = 1e-3 throughout %.3e\n", d_restart, d_coarse);
   EXPECT_GT(d_coarse, 0.0);
   EXPECT_LE(d_restart, d_coarse);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

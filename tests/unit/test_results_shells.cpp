@@ -4,13 +4,13 @@
 // Mixed connectivity (XDMF type code, then the model's node ids), the node positions and
 // displacements of the deformed state, and every shell_<field> equal to the element's own output.
 // The XDMF index must have a "shells" grid with a Mixed topology and every field as cell data.
-// The files stay in results_shells/ of the working directory: ctest scenes.paraview_shells_unit
-// opens them with ParaView (tests/scenes/paraview_shells.py).
+// The files go to a fresh temporary directory, or to $ALPHAFLEX_TEST_OUTPUT_DIR/results_shells
+// when that is set (test_support.hpp): ctest scenes.paraview_shells_unit sets it and opens the
+// files with ParaView (tests/scenes/paraview_shells.py).
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -22,6 +22,7 @@
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/model/model.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
+#include "test_support.hpp"
 
 using namespace alphaflex;
 
@@ -120,7 +121,8 @@ TEST(ResultsShells, MixedShellMeshIsWrittenWithConnectivityGeometryAndResultants
     s1.v.segment(n.first_dof, 6) << 0.1 * x0.x(), 0, 0.2, 0, 0.3, 0;
   }
 
-  const std::string outdir = (std::filesystem::current_path() / "results_shells").string();
+  const alphaflex::testing::TestOutputDir out("results_shells");
+  const std::string& outdir = out.path();
   std::string h5, xdmf;
   {
     Subdomain sub(model, MPI_COMM_SELF);

@@ -12,6 +12,7 @@
 #include "alphaflex/io/scene.hpp"
 #include "alphaflex/io/schema.hpp"
 #include "alphaflex/study/study_spec.hpp"
+#include "test_support.hpp"
 
 namespace alphaflex {
 namespace {
@@ -110,8 +111,8 @@ forces:
 // stop_after_start sets the run up and stops before the first step, writing nothing.
 TEST(SceneErrors, StopAfterStartTakesNoStepAndWritesNothing) {
   namespace fs = std::filesystem;
-  const fs::path out = fs::temp_directory_path() / "alphaflex_stop_after_start";
-  fs::remove_all(out);
+  const testing::TestOutputDir dir("stop_after_start");
+  const fs::path out = fs::path(dir.path()) / "out";  // must not come into existence
   Scene sc = read_scene_text(kPendulum, "pendulum.yaml");
   RunOptions o;
   o.outdir = out.string();

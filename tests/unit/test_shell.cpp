@@ -8,7 +8,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <functional>
 #include <random>
 #include <set>
@@ -18,6 +17,7 @@
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/elements/shell.hpp"
 #include "alphaflex/model/node.hpp"
+#include "test_support.hpp"
 
 using namespace alphaflex;
 
@@ -36,25 +36,13 @@ Eigen::VectorXd stored(const std::vector<Pose<double>>& p) {
   return q;
 }
 
-Eigen::VectorXd retracted(const Eigen::VectorXd& q, const Eigen::VectorXd& d) {
-  Eigen::VectorXd out(q.size());
-  for (int k = 0; k < q.size() / 7; ++k) retract(NodeKind::Frame3D, q.data() + 7 * k, d.data() + 6 * k, out.data() + 7 * k);
-  return out;
-}
-
-/// Central differences on the group: column j = [f(q ∘ exp(ε e_j)) − f(q ∘ exp(−ε e_j))] / 2ε.
-Eigen::MatrixXd fd_on_group(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& q,
-                            double h) {
-  const int n = static_cast<int>(q.size() / 7 * 6);
-  Eigen::MatrixXd J;
-  for (int j = 0; j < n; ++j) {
-    const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, j) * h;
-    const Eigen::VectorXd col = (f(retracted(q, e)) - f(retracted(q, -e))) / (2 * h);
-    if (j == 0) J.resize(col.size(), n);
-    J.col(j) = col;
-  }
-  return J;
-}
+// Central differences on the group with h = 1e-6 (m, rad), on q̇ and q̈ with h = 1e-6 (test_support.hpp).
+using alphaflex::testing::central_differences;
+using alphaflex::testing::central_differences_on_frames;
+using alphaflex::testing::element_residual_of;
+using alphaflex::testing::fixed_fd_step;
+using alphaflex::testing::retracted_frames;
+using alphaflex::testing::Wrt;
 
 double rel(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / std::max(b.norm(), DBL_MIN); }
 
@@ -108,12 +96,12 @@ TEST(ReissnerMindlinShell, ElasticResidualIsEnergyGradientAndKMatchesFiniteDiffe
       Eigen::VectorXd r;
       Eigen::MatrixXd K;
       shell.elastic_forces(q, r, &K);
-      const Eigen::MatrixXd dW = fd_on_group([&](const Eigen::VectorXd& x) {
-        return Eigen::VectorXd::Constant(1, shell.elastic_energy(x)); }, q, 1e-6);
-      const Eigen::MatrixXd Kfd = fd_on_group([&](const Eigen::VectorXd& x) {
+      const Eigen::MatrixXd dW = central_differences_on_frames([&](const Eigen::VectorXd& x) {
+        return Eigen::VectorXd::Constant(1, shell.elastic_energy(x)); }, q, fixed_fd_step(1e-6));
+      const Eigen::MatrixXd Kfd = central_differences_on_frames([&](const Eigen::VectorXd& x) {
         Eigen::VectorXd rr;
         shell.elastic_forces(x, rr);
-        return rr; }, q, 1e-6);
+        return rr; }, q, fixed_fd_step(1e-6));
       const double er = rel(r.transpose(), dW), eK = rel(K, Kfd);
       std::printf("[ FD       ] %d nodes: |r - dW/dδ| %.1e, |K - FD| %.1e (relative)\n", n, er, eK);
       EXPECT_LT(er, 1e-6);
@@ -136,24 +124,9 @@ TEST(ReissnerMindlinShell, InertiaTangentsMatchFiniteDifferences) {
     LocalResidual out;
     out.reset(6 * n, true);
     shell.evaluate(st, out, true);
-    auto res = [&](const LocalState& x) {
-      LocalResidual o;
-      o.reset(6 * n, false);
-      shell.evaluate(x, o, false);
-      return o.r;
-    };
-    const Eigen::MatrixXd Kfd = fd_on_group([&](const Eigen::VectorXd& q) { LocalState x = st; x.q = q; return res(x); }, st.q, 1e-6);
-    Eigen::MatrixXd Cfd(6 * n, 6 * n), Mfd(6 * n, 6 * n);
-    for (int j = 0; j < 6 * n; ++j) {
-      LocalState a = st, b = st;
-      a.v[j] += 1e-6;
-      b.v[j] -= 1e-6;
-      Cfd.col(j) = (res(a) - res(b)) / 2e-6;
-      a = st, b = st;
-      a.qdd[j] += 1e-6;
-      b.qdd[j] -= 1e-6;
-      Mfd.col(j) = (res(a) - res(b)) / 2e-6;
-    }
+    const Eigen::MatrixXd Kfd = central_differences_on_frames(element_residual_of(shell, st, Wrt::q), st.q, fixed_fd_step(1e-6));
+    const Eigen::MatrixXd Cfd = central_differences(element_residual_of(shell, st, Wrt::v), st.v, fixed_fd_step(1e-6));
+    const Eigen::MatrixXd Mfd = central_differences(element_residual_of(shell, st, Wrt::qdd), st.qdd, fixed_fd_step(1e-6));
     std::printf("[ FD       ] %d nodes: K %.1e, C %.1e, M %.1e\n", n, rel(out.K, Kfd), rel(out.C, Cfd), rel(out.M, Mfd));
     EXPECT_LT(rel(out.K, Kfd), 1e-6);
     EXPECT_LT(rel(out.C, Cfd), 1e-6);
@@ -176,13 +149,7 @@ TEST(ShellPressure, FollowerTangentMatchesFiniteDifferencesAndFixedHasNone) {
       LocalResidual out;
       out.reset(6 * n, true);
       p.evaluate(st, out, true);
-      const Eigen::MatrixXd Kfd = fd_on_group([&](const Eigen::VectorXd& q) {
-        LocalState x = st;
-        x.q = q;
-        LocalResidual o;
-        o.reset(6 * n, false);
-        p.evaluate(x, o, false);
-        return o.r; }, st.q, 1e-6);
+      const Eigen::MatrixXd Kfd = central_differences_on_frames(element_residual_of(p, st, Wrt::q), st.q, fixed_fd_step(1e-6));
       if (follower) EXPECT_LT(rel(out.K, Kfd), 1e-7);
       else EXPECT_LT(Kfd.norm(), 1e-6 * out.r.norm());
     }
@@ -351,7 +318,7 @@ struct ShellModel {
       const Eigen::VectorXd d = lu.solve(-rf);
       Eigen::VectorXd full = Eigen::VectorXd::Zero(6 * nodes());
       for (int k = 0; k < nf; ++k) full[fr[static_cast<size_t>(k)]] = d[k];
-      q = retracted(q, full);
+      q = retracted_frames(q, full);
       // Converged to round-off: an increment far below the positions' resolution.
       if (full.lpNorm<Eigen::Infinity>() < 1e-13 * size()) return it + 1;
     }
@@ -596,37 +563,5 @@ TEST(ReissnerMindlinShell, GravityLoadsAddUpToTheWeight) {
     Eigen::Vector3d total = Eigen::Vector3d::Zero();
     for (int I = 0; I < n; ++I) total -= out.r.segment<3>(6 * I);
     EXPECT_LT((total - sec.mass * shell.area() * g).norm(), 1e-10 * (sec.mass * shell.area() * g).norm());
-  }
-}
-
-// Cost per element evaluation, printed for docs/theory/shell.md (a measurement, not a timed test:
-// nothing is compared with a bound). Thread CPU time, best of 5 rounds.
-TEST(ShellCost, PrintsCostPerElementEvaluation) {
-  auto now = [] {
-    timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-  };
-  std::mt19937 rng(17);
-  for (int n : {4, 3}) {
-    const Sample s = sample(n, rng);
-    const ReissnerMindlinShell shell("s", s.nodes, test_section(), s.ref, s.dirs, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0, -9.81));
-    LocalState st;
-    st.q = deformed(s, rng, 0.2);
-    st.v = Eigen::VectorXd::Random(6 * n);
-    st.qdd = Eigen::VectorXd::Random(6 * n);
-    for (bool tangent : {false, true}) {
-      double best = 1e300;
-      for (int round = 0; round < 5; ++round) {
-        const double t0 = now();
-        for (int i = 0; i < 200; ++i) {
-          LocalResidual out;
-          out.reset(6 * n, tangent);
-          shell.evaluate(st, out, tangent);
-        }
-        best = std::min(best, (now() - t0) / 200 * 1e6);
-      }
-      std::printf("[ cost     ] %s %s: %.1f us per evaluation\n", shell.type(), tangent ? "r, K, C, M" : "r", best);
-    }
   }
 }

@@ -23,6 +23,7 @@
 #include "alphaflex/joints/spatial_joints.hpp"
 #include "alphaflex/model/element.hpp"
 #include "alphaflex/model/node.hpp"
+#include "test_support.hpp"
 
 using namespace alphaflex;
 
@@ -81,17 +82,10 @@ Eigen::VectorXd difference(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1)
 
 Eigen::VectorXd unit(int n, int j) { return Eigen::VectorXd::Unit(n, j); }
 
-/// Central differences on the group, column j: [f(q ∘ exp(ε e_j)) − f(q ∘ exp(−ε e_j))] / 2ε.
+/// Central differences on the group, column j: [f(q ∘ exp(ε e_j)) − f(q ∘ exp(−ε e_j))] / 2ε,
+/// ε = kFdStep (test_support.hpp).
 Eigen::MatrixXd fd_on_group(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& q) {
-  const int n = static_cast<int>(q.size() / 7 * 6);
-  Eigen::MatrixXd J;
-  for (int j = 0; j < n; ++j) {
-    const Eigen::VectorXd col =
-        (f(retracted(q, kFdStep * unit(n, j))) - f(retracted(q, -kFdStep * unit(n, j)))) / (2.0 * kFdStep);
-    if (j == 0) J.resize(col.size(), n);
-    J.col(j) = col;
-  }
-  return J;
+  return alphaflex::testing::central_differences_on_frames(f, q, alphaflex::testing::fixed_fd_step(kFdStep));
 }
 
 double discrepancy(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double scale) {
@@ -120,11 +114,6 @@ const Eigen::Vector3d kGround(1.0, -0.5, 0.8), kRotGround(0.2, 0.3, -0.6);
 const TimeFunctionPtr kAngle = make_sine(0.7, 0.3, 0.4, 0.2);           // rad
 const TimeFunctionPtr kDisplacement = make_sine(0.35, 0.5, -0.2, 0.1);  // m
 
-const std::vector<SpatialJointType> kTypes = {
-    SpatialJointType::Spherical, SpatialJointType::Universal, SpatialJointType::Revolute, SpatialJointType::Cylindrical,
-    SpatialJointType::Prismatic, SpatialJointType::Planar,    SpatialJointType::Fixed,
-    SpatialJointType::PointOnLine, SpatialJointType::PointOnPlane};
-
 struct JointCase {
   std::string label;
   std::shared_ptr<const SpatialJoint> joint;
@@ -132,34 +121,47 @@ struct JointCase {
   bool angle = false, displacement = false;
 };
 
-std::shared_ptr<const SpatialJoint> make_joint(SpatialJointType type, int nodes, SpatialMarker a, SpatialMarker b,
-                                               bool angle, bool displacement) {
+std::shared_ptr<const SpatialJoint> make_joint(const SpatialJointKind& kind, int nodes, SpatialMarker a,
+                                               SpatialMarker b, bool angle, bool displacement) {
   std::vector<int> ids = nodes == 2 ? std::vector<int>{0, 1} : std::vector<int>{0};
-  return std::make_shared<SpatialJoint>("j", ids, type, a, b, angle ? kAngle : nullptr,
+  return std::make_shared<SpatialJoint>("j", ids, kind, a, b, angle ? kAngle : nullptr,
                                         displacement ? kDisplacement : nullptr);
 }
 
-/// Every joint type (and driver combination) between two nodes, between a node and the ground,
-/// with the ground as marker A, and with the markers on the nodes in the other order.
+const SpatialJointKind& kind(const std::string& name) {
+  const SpatialJointKind* k = find_spatial_joint_kind(name);
+  if (!k) throw std::logic_error("no spatial joint type '" + name + "'");
+  return *k;
+}
+
+std::shared_ptr<const SpatialJoint> make_joint(const std::string& type, int nodes, SpatialMarker a, SpatialMarker b,
+                                               bool angle, bool displacement) {
+  return make_joint(kind(type), nodes, a, b, angle, displacement);
+}
+
+/// Every joint type of the table (spatial_joint_kinds(): a new row is tested here without a line
+/// more, once allowed_motion knows its motion) and every driver combination its row takes, between
+/// two nodes, between a node and the ground, with the ground as marker A, and with the markers on
+/// the nodes in the other order.
 std::vector<JointCase> joint_cases() {
   struct Drivers {
-    SpatialJointType type;
+    const SpatialJointKind* kind;
     bool angle, displacement;
   };
   std::vector<Drivers> variants;
-  for (SpatialJointType t : kTypes) variants.push_back({t, false, false});
-  variants.push_back({SpatialJointType::Revolute, true, false});
-  variants.push_back({SpatialJointType::Cylindrical, true, false});
-  variants.push_back({SpatialJointType::Cylindrical, false, true});
-  variants.push_back({SpatialJointType::Cylindrical, true, true});
-  variants.push_back({SpatialJointType::Prismatic, false, true});
+  for (const SpatialJointKind& k : spatial_joint_kinds()) {
+    variants.push_back({&k, false, false});
+    if (k.angle_driver) variants.push_back({&k, true, false});
+    if (k.displacement_driver) variants.push_back({&k, false, true});
+    if (k.angle_driver && k.displacement_driver) variants.push_back({&k, true, true});
+  }
   std::vector<JointCase> cases;
   for (const Drivers& v : variants) {
-    std::string name = to_string(v.type);
+    std::string name = v.kind->name;
     if (v.angle) name += " + angle driver";
     if (v.displacement) name += " + displacement driver";
     const auto add = [&](const std::string& where, int nodes, SpatialMarker a, SpatialMarker b) {
-      cases.push_back({name + ", " + where, make_joint(v.type, nodes, a, b, v.angle, v.displacement), nodes, v.angle,
+      cases.push_back({name + ", " + where, make_joint(*v.kind, nodes, a, b, v.angle, v.displacement), nodes, v.angle,
                        v.displacement});
     };
     add("node-node", 2, marker(0, kPosA, kRotA), marker(1, kPosB, kRotB));
@@ -188,46 +190,37 @@ Motion allowed_motion(const JointCase& c, const Eigen::VectorXd& p, double t) {
   Motion m;
   int k = 0;
   const auto next = [&]() { return p[k++]; };
-  switch (c.joint->joint_type()) {
-    case SpatialJointType::Spherical:
-      m.R = rot(Eigen::Vector3d(next(), next(), next()));
-      break;
-    case SpatialJointType::Universal: {
-      const double alpha = next(), beta = next();
-      m.R = rot(0, alpha) * rot(1, beta);  // about a1, then about the cross axis b2
-      break;
-    }
-    case SpatialJointType::Revolute:
-      m.R = rot(2, c.angle ? -kAngle->value(t) : next());
-      break;
-    case SpatialJointType::Cylindrical: {
-      const double phi = c.angle ? -kAngle->value(t) : next();
-      const double s = c.displacement ? -kDisplacement->value(t) : next();
-      m.R = rot(2, phi);
-      m.p = Eigen::Vector3d(0, 0, s);
-      break;
-    }
-    case SpatialJointType::Prismatic:
-      m.p = Eigen::Vector3d(0, 0, c.displacement ? -kDisplacement->value(t) : next());
-      break;
-    case SpatialJointType::Planar: {
-      const double phi = next(), u = next(), v = next();
-      m.R = rot(2, phi);
-      m.p = Eigen::Vector3d(u, v, 0);
-      break;
-    }
-    case SpatialJointType::Fixed:
-      break;
-    case SpatialJointType::PointOnLine: {  // any rotation, any slide along a3
-      m.R = rot(Eigen::Vector3d(next(), next(), next()));
-      m.p = Eigen::Vector3d(0, 0, next());
-      break;
-    }
-    case SpatialJointType::PointOnPlane: {  // any rotation, any position in the plane ⊥ a3
-      m.R = rot(Eigen::Vector3d(next(), next(), next()));
-      m.p = Eigen::Vector3d(next(), next(), 0);
-      break;
-    }
+  // By name: an independent statement of each joint type's motion (a new row of the table fails
+  // here until its motion is written down).
+  const std::string& type = c.joint->kind().name;
+  if (type == "spherical") {
+    m.R = rot(Eigen::Vector3d(next(), next(), next()));
+  } else if (type == "universal") {
+    const double alpha = next(), beta = next();
+    m.R = rot(0, alpha) * rot(1, beta);  // about a1, then about the cross axis b2
+  } else if (type == "revolute") {
+    m.R = rot(2, c.angle ? -kAngle->value(t) : next());
+  } else if (type == "cylindrical") {
+    const double phi = c.angle ? -kAngle->value(t) : next();
+    const double s = c.displacement ? -kDisplacement->value(t) : next();
+    m.R = rot(2, phi);
+    m.p = Eigen::Vector3d(0, 0, s);
+  } else if (type == "prismatic") {
+    m.p = Eigen::Vector3d(0, 0, c.displacement ? -kDisplacement->value(t) : next());
+  } else if (type == "planar") {
+    const double phi = next(), u = next(), v = next();
+    m.R = rot(2, phi);
+    m.p = Eigen::Vector3d(u, v, 0);
+  } else if (type == "fixed") {
+  } else if (type == "point_on_line") {  // any rotation, any slide along a3
+    m.R = rot(Eigen::Vector3d(next(), next(), next()));
+    m.p = Eigen::Vector3d(0, 0, next());
+  } else if (type == "point_on_plane") {  // any rotation, any position in the plane ⊥ a3
+    m.R = rot(Eigen::Vector3d(next(), next(), next()));
+    m.p = Eigen::Vector3d(next(), next(), 0);
+  } else {
+    ADD_FAILURE() << "joint type '" << type << "': write its allowed motion in allowed_motion";
+    while (k < p.size()) next();
   }
   EXPECT_EQ(k, p.size()) << c.label << ": free parameters of the allowed motion";
   return m;
@@ -297,24 +290,25 @@ Eigen::VectorXd fd_second_along(const Constraint& j, const Eigen::VectorXd& q, c
 // =================================================================== SpatialJoint: counts
 
 TEST(SpatialJoint, EquationCountsAreThoseOfTheHeaderTablePlusOnePerDriver) {
-  const std::vector<std::pair<SpatialJointType, int>> table = {
-      {SpatialJointType::Spherical, 3},   {SpatialJointType::Universal, 4}, {SpatialJointType::Revolute, 5},
-      {SpatialJointType::Cylindrical, 4}, {SpatialJointType::Prismatic, 5}, {SpatialJointType::Planar, 3},
-      {SpatialJointType::Fixed, 6},       {SpatialJointType::PointOnLine, 2}, {SpatialJointType::PointOnPlane, 1}};
+  // 6 − the degrees of freedom each joint leaves (the motions of EachJointAllowsExactly… below).
+  const std::vector<std::pair<std::string, int>> table = {
+      {"spherical", 3}, {"universal", 4}, {"revolute", 5},      {"cylindrical", 4},   {"prismatic", 5},
+      {"planar", 3},    {"fixed", 6},     {"point_on_line", 2}, {"point_on_plane", 1}};
+  EXPECT_EQ(spatial_joint_kinds().size(), table.size()) << "a joint type without an expected count here";
   for (const auto& [type, m] : table) {
-    EXPECT_EQ(equations_of(type), m) << to_string(type);
+    EXPECT_EQ(kind(type).num_equations, m) << type;
     EXPECT_EQ(make_joint(type, 2, marker(0, kPosA, kRotA), marker(1, kPosB, kRotB), false, false)->size(), m);
   }
   const SpatialMarker a = marker(0, kPosA, kRotA), b = marker(-1, kGround, kRotGround);
-  EXPECT_EQ(make_joint(SpatialJointType::Revolute, 1, a, b, true, false)->size(), 6);
-  EXPECT_EQ(make_joint(SpatialJointType::Cylindrical, 1, a, b, true, false)->size(), 5);
-  EXPECT_EQ(make_joint(SpatialJointType::Cylindrical, 1, a, b, false, true)->size(), 5);
-  EXPECT_EQ(make_joint(SpatialJointType::Cylindrical, 1, a, b, true, true)->size(), 6);
-  EXPECT_EQ(make_joint(SpatialJointType::Prismatic, 1, a, b, false, true)->size(), 6);
+  EXPECT_EQ(make_joint("revolute", 1, a, b, true, false)->size(), 6);
+  EXPECT_EQ(make_joint("cylindrical", 1, a, b, true, false)->size(), 5);
+  EXPECT_EQ(make_joint("cylindrical", 1, a, b, false, true)->size(), 5);
+  EXPECT_EQ(make_joint("cylindrical", 1, a, b, true, true)->size(), 6);
+  EXPECT_EQ(make_joint("prismatic", 1, a, b, false, true)->size(), 6);
   // Drivers only where the joint has that freedom.
-  EXPECT_THROW(make_joint(SpatialJointType::Prismatic, 1, a, b, true, false), std::invalid_argument);
-  EXPECT_THROW(make_joint(SpatialJointType::Revolute, 1, a, b, false, true), std::invalid_argument);
-  EXPECT_THROW(make_joint(SpatialJointType::Spherical, 1, a, b, true, false), std::invalid_argument);
+  EXPECT_THROW(make_joint("prismatic", 1, a, b, true, false), std::invalid_argument);
+  EXPECT_THROW(make_joint("revolute", 1, a, b, false, true), std::invalid_argument);
+  EXPECT_THROW(make_joint("spherical", 1, a, b, true, false), std::invalid_argument);
   for (const JointCase& c : joint_cases()) {
     Eigen::VectorXd phi;
     Eigen::MatrixXd phi_q;
@@ -324,6 +318,76 @@ TEST(SpatialJoint, EquationCountsAreThoseOfTheHeaderTablePlusOnePerDriver) {
     EXPECT_EQ(phi_q.rows(), c.joint->size()) << c.label;
     EXPECT_EQ(phi_q.cols(), 6 * c.nodes) << c.label;
   }
+}
+
+TEST(SpatialJoint, EquationNamesAreThoseOfTheTableThenTheDrivers) {
+  EXPECT_EQ(kind("revolute").equation_names, (std::vector<std::string>{"x", "y", "z", "a3·b1", "a3·b2"}));
+  EXPECT_EQ(kind("prismatic").equation_names,
+            (std::vector<std::string>{"a1·d", "a2·d", "a3·b1", "a3·b2", "a1·b2"}));
+  EXPECT_EQ(find_spatial_joint_kind("hinge"), nullptr);
+  const SpatialMarker a = marker(0, kPosA, kRotA), b = marker(-1, kGround, kRotGround);
+  const auto cyl = make_joint("cylindrical", 1, a, b, true, true);
+  EXPECT_EQ(cyl->equation_name(3), "a3·b2");
+  EXPECT_EQ(cyl->equation_name(4), "angle");
+  EXPECT_EQ(cyl->equation_name(5), "displacement");
+  EXPECT_EQ(cyl->equation_label(4), "equation 5 (angle)");
+  EXPECT_EQ(make_joint("prismatic", 1, a, b, false, true)->equation_name(5), "displacement");
+  EXPECT_EQ(spatial_joint_kind_names(),
+            "spherical, universal, revolute, cylindrical, prismatic, planar, fixed, point_on_line, point_on_plane");
+  using V = MarkerVector;
+  EXPECT_EQ((dot(V::a1, V::b2) + dot(V::a2, V::b1)).name, "a1·b2 + a2·b1");
+  EXPECT_EQ((dot(V::a1, V::d) + -1.0 * dot(V::b3, V::d)).name, "a1·d − b3·d");
+  EXPECT_EQ((2.0 * (dot(V::a1, V::d) + dot(V::e_z, V::d))).name, "2 (a1·d + z)");
+  // A malformed row is refused.
+  EXPECT_THROW(SpatialJointKind::make("bad", "", {dot(V::e_x, V::e_y)}, 0, 0), std::logic_error);
+  EXPECT_THROW(SpatialJointKind::make("bad", "", {dot(V::a1, V::d), dot(V::a1, V::d)}, 0, 0), std::logic_error);
+}
+
+// Rows of the table are single products; a row with sums and coefficients (a made-up kind, not in
+// the table) has Φ equal to the formula evaluated directly on the markers, and Φ_q and the
+// closed-form K_Φ equal to finite differences and to nested AD.
+TEST(SpatialJoint, EquationsWithSumsAndCoefficientsHaveExactDerivatives) {
+  using V = MarkerVector;
+  const SpatialJointKind skew = SpatialJointKind::make(
+      "skew", "test only",
+      {dot(V::a1, V::d) + 2.0 * dot(V::a2, V::d), dot(V::a3, V::b1) + -0.5 * dot(V::a1, V::b2) + dot(V::e_z, V::d)},
+      SpatialJointKind::axis, SpatialJointKind::angle | SpatialJointKind::displacement);
+  std::mt19937 rng(402);
+  for (int nodes = 1; nodes <= 2; ++nodes)
+    for (int drivers = 0; drivers < 2; ++drivers) {
+      SCOPED_TRACE(std::to_string(nodes) + " node(s), drivers " + std::to_string(drivers));
+      const SpatialMarker a = marker(0, kPosA, kRotA), b = nodes == 2 ? marker(1, kPosB, kRotB)
+                                                                         : marker(-1, kGround, kRotGround);
+      const auto joint = make_joint(skew, nodes, a, b, drivers, drivers);
+      ASSERT_EQ(joint->size(), 2 + 2 * drivers);
+      for (int i = 0; i < kSamples; ++i) {
+        std::vector<Pose<double>> poses;
+        for (int n = 0; n < nodes; ++n) poses.push_back(random_pose(rng));
+        const Eigen::VectorXd q = stored(poses);
+        const Pose<double> A = a.pose<double>(poses.data()), B = b.pose<double>(poses.data());
+        const Eigen::Vector3d d = B.x - A.x;
+        Eigen::VectorXd expected(joint->size());
+        expected.head<2>() << A.R.col(0).dot(d) + 2.0 * A.R.col(1).dot(d),
+            A.R.col(2).dot(B.R.col(0)) - 0.5 * A.R.col(0).dot(B.R.col(1)) + d.z();
+        if (drivers) {
+          const double phi = kAngle->value(kT);
+          expected[2] = A.R.col(0).dot(std::cos(phi) * B.R.col(1) - std::sin(phi) * B.R.col(0));
+          expected[3] = -B.R.col(2).dot(d) - kDisplacement->value(kT);
+        }
+        EXPECT_LE((phi_of(*joint, q) - expected).cwiseAbs().maxCoeff(), 1e-14) << phi_of(*joint, q).transpose();
+        const Eigen::MatrixXd phi_q = phi_q_of(*joint, q);
+        const Eigen::MatrixXd fd = fd_on_group([&](const Eigen::VectorXd& x) { return phi_of(*joint, x); }, q);
+        EXPECT_LE(discrepancy(phi_q, fd, phi_q.norm()), kRelTol);
+        const Eigen::VectorXd lambda = random_vector(rng, joint->size(), -2.0, 2.0);
+        Eigen::MatrixXd closed, by_ad;
+        joint->geometric_stiffness(q, kT, lambda, closed);
+        joint->geometric_stiffness_by_ad(q, kT, lambda, by_ad);
+        EXPECT_LE((closed - by_ad).cwiseAbs().maxCoeff(), 1e-13 * std::max(1.0, by_ad.cwiseAbs().maxCoeff()));
+        const Eigen::MatrixXd kfd =
+            fd_on_group([&](const Eigen::VectorXd& x) { return (phi_q_of(*joint, x).transpose() * lambda).eval(); }, q);
+        EXPECT_LE(discrepancy(closed, kfd, closed.norm()), kRelTol);
+      }
+    }
 }
 
 // =================================================================== SpatialJoint: allowed motions
@@ -393,26 +457,17 @@ TEST(SpatialJoint, EachJointAllowsExactlyTheElementaryMotionsOfItsName) {
   //   and translation along a3; point_on_plane: rotations and translations along a1, a2.
   // A driver removes its motion (rotation about a3, translation along a3).
   const auto allowed = [](const JointCase& c, bool rotation, int axis) {
-    switch (c.joint->joint_type()) {
-      case SpatialJointType::Spherical:
-        return rotation;
-      case SpatialJointType::Universal:
-        return rotation && axis < 2;
-      case SpatialJointType::Revolute:
-        return rotation && axis == 2 && !c.angle;
-      case SpatialJointType::Cylindrical:
-        return axis == 2 && (rotation ? !c.angle : !c.displacement);
-      case SpatialJointType::Prismatic:
-        return !rotation && axis == 2 && !c.displacement;
-      case SpatialJointType::Planar:
-        return rotation ? axis == 2 : axis < 2;
-      case SpatialJointType::Fixed:
-        return false;
-      case SpatialJointType::PointOnLine:
-        return rotation || axis == 2;
-      case SpatialJointType::PointOnPlane:
-        return rotation || axis < 2;
-    }
+    const std::string& type = c.joint->kind().name;
+    if (type == "spherical") return bool(rotation);
+    if (type == "universal") return rotation && axis < 2;
+    if (type == "revolute") return rotation && axis == 2 && !c.angle;
+    if (type == "cylindrical") return axis == 2 && (rotation ? !c.angle : !c.displacement);
+    if (type == "prismatic") return !rotation && axis == 2 && !c.displacement;
+    if (type == "planar") return rotation ? axis == 2 : axis < 2;
+    if (type == "fixed") return false;
+    if (type == "point_on_line") return rotation || axis == 2;
+    if (type == "point_on_plane") return rotation || axis < 2;
+    ADD_FAILURE() << "joint type '" << type << "': write its elementary motions here";
     return false;
   };
   std::mt19937 rng(200);
@@ -521,8 +576,7 @@ TEST(SpatialJoint, TimeDerivativeMatchesFiniteDifferencesInTimeAndVanishesWithou
         continue;
       }
       // Only the driver rows depend on time.
-      EXPECT_EQ(phi_t.head(equations_of(c.joint->joint_type())),
-                Eigen::VectorXd::Zero(equations_of(c.joint->joint_type())));
+      EXPECT_EQ(phi_t.head(c.joint->kind().num_equations), Eigen::VectorXd::Zero(c.joint->kind().num_equations));
       const double d = discrepancy(phi_t, fd, phi_t.norm());
       worst = std::max(worst, d);
       EXPECT_LE(d, kRelTol) << "Φ_t = " << phi_t.transpose() << "\nFD:   " << fd.transpose();
@@ -553,7 +607,7 @@ TEST(SpatialJoint, DriversPrescribeTheMotionOfNode1RelativeToNode2) {
     const Eigen::Vector3d x = p + R * (x0 - p) + u * n;
     const Eigen::VectorXd q = stored({{x, R}}),
                           q_wrong = stored({{p + R.transpose() * (x0 - p) - u * n, R.transpose()}});
-    const SpatialJoint cyl("c", {0}, SpatialJointType::Cylindrical, a_framed, b_framed, kAngle, kDisplacement);
+    const SpatialJoint cyl("c", {0}, kind("cylindrical"), a_framed, b_framed, kAngle, kDisplacement);
     EXPECT_LE(phi_of(cyl, q, t).cwiseAbs().maxCoeff(), 1e-14) << "t = " << t << ": " << phi_of(cyl, q, t).transpose();
     EXPECT_GT(phi_of(cyl, q_wrong, t).tail<2>().cwiseAbs().minCoeff(), 1e-3) << "t = " << t;
     // Rates: at a configuration satisfying the drivers, Φ_t = (−φ', −u').
@@ -628,7 +682,7 @@ TEST(SpatialJoint, SphericalJointHoldingAHangingBodyPushesUpWithItsWeight) {
   const Eigen::Matrix3d R = rot(Eigen::Vector3d(0.7, -0.4, 1.1));
   const Eigen::Vector3d p(0.4, -0.3, 2.0);
   const Eigen::Vector3d s_body = R.transpose() * Eigen::Vector3d(0.0, 0.0, 0.8);  // joint 0.8 above the CM
-  const SpatialJoint joint("pivot", {0}, SpatialJointType::Spherical, marker(0, s_body, kRotA),
+  const SpatialJoint joint("pivot", {0}, kind("spherical"), marker(0, s_body, kRotA),
                            marker(-1, p, kRotGround));
   const Eigen::VectorXd q = stored({{p - R * s_body, R}});
   EXPECT_LE(phi_of(joint, q).norm(), 4 * kEps);
@@ -679,7 +733,7 @@ TEST(SpatialJoint, FixedJointReactionBalancesTheLoadOnNode1AboutTheJointPoint) {
       poses.push_back(node_from_marker(b, {p_A, frame_A}));
     }
     const SpatialJoint joint("clamp", nodes == 1 ? std::vector<int>{0} : std::vector<int>{0, 1},
-                             SpatialJointType::Fixed, marker(0, kPosA, kRotA), b);
+                             kind("fixed"), marker(0, kPosA, kRotA), b);
     const Eigen::VectorXd q = stored(poses);
     EXPECT_LE(phi_of(joint, q).norm(), 1e-14);
     LocalState s;
@@ -802,13 +856,13 @@ TEST(RigidBody3D, TangentsAreZeroKConstantMAndCMatchingFiniteDifferencesInOmega)
         s.q);
     EXPECT_EQ(K_fd, Eigen::MatrixXd::Zero(6, 6));
     // C = ∂r/∂(ẋ, Ω) by central differences; C = [0 0; 0 Ω̂J − (JΩ)^].
-    Eigen::MatrixXd C_fd(6, 6);
-    for (int j = 0; j < 6; ++j) {
-      LocalState p = s, m = s;
-      p.v[j] += kFdStep;
-      m.v[j] -= kFdStep;
-      C_fd.col(j) = (evaluate(body, p, false).r - evaluate(body, m, false).r) / (2 * kFdStep);
-    }
+    const Eigen::MatrixXd C_fd = alphaflex::testing::central_differences(
+        [&](const Eigen::VectorXd& x) {
+          LocalState p = s;
+          p.v = x;
+          return evaluate(body, p, false).r;
+        },
+        s.v, alphaflex::testing::fixed_fd_step(kFdStep));
     const double d = discrepancy(t.C, C_fd, t.C.norm());
     worst = std::max(worst, d);
     EXPECT_LE(d, kRelTol) << "C:\n" << t.C.format(kFmt) << "\nFD:\n" << C_fd.format(kFmt);

@@ -1,10 +1,15 @@
 #pragma once
-// Helpers shared by the scene-level tests: run a scene in-process, read reference CSVs, fit slopes.
+// Helpers shared by the tests: run a scene in-process, read reference CSVs, fit slopes, a fresh
+// output directory, central differences.
 #include <petscsys.h>
+#include <stdlib.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -13,12 +18,54 @@
 
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/rotation.hpp"
+#include "alphaflex/model/element.hpp"
+#include "alphaflex/model/node.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
 #include "alphaflex/io/scene.hpp"
 
 namespace alphaflex::testing {
 
 inline std::string source_path(const std::string& rel) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/" + rel; }
+
+/// Where a test writes its files: never the source tree or the working directory (a test's output
+/// once ended up committed). By default a fresh directory under the system's temporary directory,
+/// removed with this object; if the environment variable ALPHAFLEX_TEST_OUTPUT_DIR is set, the
+/// directory $ALPHAFLEX_TEST_OUTPUT_DIR/<name>, emptied first and kept, for a later test that reads
+/// the files (ctest scenes.paraview_shells_unit opens those of ResultsShells in ParaView).
+class TestOutputDir {
+ public:
+  explicit TestOutputDir(const std::string& name) {
+    namespace fs = std::filesystem;
+    if (const char* given = std::getenv("ALPHAFLEX_TEST_OUTPUT_DIR"); given && *given) {
+      path_ = (fs::path(given) / name).string();
+      fs::remove_all(path_);
+      fs::create_directories(path_);
+      return;
+    }
+    std::string pattern = (fs::temp_directory_path() / ("alphaflex_" + name + "_XXXXXX")).string();
+    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a directory " + pattern);
+    path_ = pattern;
+    owned_ = true;
+  }
+  ~TestOutputDir() {
+    std::error_code ec;
+    if (owned_) std::filesystem::remove_all(path_, ec);
+  }
+  TestOutputDir(const TestOutputDir&) = delete;
+  TestOutputDir& operator=(const TestOutputDir&) = delete;
+  const std::string& path() const { return path_; }
+  std::string file(const std::string& name) const { return (std::filesystem::path(path_) / name).string(); }
+  /// Writes `text` to the file `name` here; returns its path.
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string p = file(name);
+    std::ofstream(p) << text;
+    return p;
+  }
+
+ private:
+  std::string path_;
+  bool owned_ = false;
+};
 
 /// Runs inputs/<scene>.yaml with --set style overrides, no files written.
 inline RunSummary run_scene(const std::string& scene, const std::vector<std::string>& overrides) {
@@ -144,6 +191,83 @@ inline GroupOrders successive_difference_orders(const std::vector<double>& hs, c
   std::printf("%sslopes: position %.2f, rotation %.2f, velocity %.2f, multiplier %.2f\n", label.c_str(), o.position,
               o.rotation, o.velocity, o.multiplier);
   return o;
+}
+
+// ---- Central differences: the one finite-difference helper of the tests ---------------------------
+// Finite differences only check (docs/architecture.md): every tangent of the code is exact and is
+// compared here with central differences, whose error is O(h²) truncation plus O(ε|f|/h) round-off;
+// at h ≈ 1e-6 of the variable's scale both are ~1e-10..1e-12 of |f|, well below the tests'
+// tolerances. Each test states the step it uses.
+
+using VectorFunction = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+/// The step h_j of column j, given the variable's value x_j (0 on the group: the increment's origin).
+using FdStep = std::function<double(int j, double x_j)>;
+
+/// The default step rule: h_j = 1e-6 max(1, |x_j|), relative for large values, absolute near zero.
+inline double default_fd_step(int, double x_j) { return 1e-6 * std::max(1.0, std::abs(x_j)); }
+
+/// The same step h for every column.
+inline FdStep fixed_fd_step(double h) {
+  return [h](int, double) { return h; };
+}
+
+/// ∂f/∂x on a vector space: column j = [f(x + h_j e_j) − f(x − h_j e_j)] / (2 h_j).
+inline Eigen::MatrixXd central_differences(const VectorFunction& f, const Eigen::VectorXd& x,
+                                           const FdStep& step = default_fd_step) {
+  Eigen::MatrixXd J;
+  for (Eigen::Index j = 0; j < x.size(); ++j) {
+    const double h = step(static_cast<int>(j), x[j]);
+    Eigen::VectorXd xp = x, xm = x;
+    xp[j] += h;
+    xm[j] -= h;
+    const Eigen::VectorXd col = (f(xp) - f(xm)) / (2.0 * h);
+    if (j == 0) J.resize(col.size(), x.size());
+    J.col(j) = col;
+  }
+  return J;
+}
+
+/// q ∘ exp(d) frame by frame: q stores 7 numbers per R³×SO(3) frame (position, unit quaternion),
+/// d has 6 per frame (δx in the world frame, δθ in the body frame; model/node.hpp's retraction).
+inline Eigen::VectorXd retracted_frames(const Eigen::VectorXd& q, const Eigen::VectorXd& d) {
+  Eigen::VectorXd out(q.size());
+  for (Eigen::Index k = 0; k < q.size() / 7; ++k)
+    retract(NodeKind::Frame3D, q.data() + 7 * k, d.data() + 6 * k, out.data() + 7 * k);
+  return out;
+}
+
+/// The derivative of f along the right-trivialized increments of frames (R³×SO(3)), 6 columns per
+/// frame: column j = [f(q ∘ exp(h_j e_j)) − f(q ∘ exp(−h_j e_j))] / (2 h_j), h_j = step(j, 0).
+inline Eigen::MatrixXd central_differences_on_frames(const VectorFunction& f, const Eigen::VectorXd& q,
+                                                     const FdStep& step) {
+  const Eigen::Index n = q.size() / 7 * 6;
+  Eigen::MatrixXd J;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double h = step(static_cast<int>(j), 0.0);
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, j) * h;
+    const Eigen::VectorXd col = (f(retracted_frames(q, e)) - f(retracted_frames(q, -e))) / (2.0 * h);
+    if (j == 0) J.resize(col.size(), n);
+    J.col(j) = col;
+  }
+  return J;
+}
+
+/// Which of an element's state vectors a derivative is taken with respect to: K = ∂r/∂q (on the
+/// group for frames), C = ∂r/∂q̇, M = ∂r/∂q̈.
+enum class Wrt { q, v, qdd };
+
+inline const Eigen::VectorXd& variable(const LocalState& s, Wrt w) { return w == Wrt::q ? s.q : w == Wrt::v ? s.v : s.qdd; }
+
+/// x ↦ r(s with x in place of its q, q̇ or q̈): the function whose central differences are K, C, M.
+inline VectorFunction element_residual_of(const Element& e, const LocalState& s, Wrt w) {
+  return [&e, s, w](const Eigen::VectorXd& x) {
+    LocalState p = s;
+    (w == Wrt::q ? p.q : w == Wrt::v ? p.v : p.qdd) = x;
+    LocalResidual out;
+    out.reset(static_cast<int>(p.v.size()), false);
+    e.evaluate(p, out, false);
+    return out.r;
+  };
 }
 
 }  // namespace alphaflex::testing

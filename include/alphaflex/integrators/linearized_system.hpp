@@ -8,12 +8,10 @@
 #include <vector>
 
 #include "alphaflex/assembly/saddle_point_system.hpp"
+#include "alphaflex/core/petsc_error.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
 
 namespace alphaflex {
-
-/// Throws SolverError naming `what` if a PETSc call failed.
-void check_petsc(PetscErrorCode ierr, const char* what);
 
 struct NewtonOptions {
   int max_iterations = 20;

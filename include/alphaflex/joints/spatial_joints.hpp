@@ -4,22 +4,18 @@
 //
 // Every joint is defined by two markers — frames fixed to node 1 and to node 2 (or the ground) —
 // that coincide at the assembled position. With A = (p_A, a1, a2, a3) the marker on node 1 and
-// B = (p_B, b1, b2, b3) the one on node 2, the joint axis is the third marker axis:
-//   spherical    p_B − p_A = 0                                              3 equations
-//   universal    p_B − p_A = 0,  a1·b2 = 0                                 4 (cross axes a1, b2)
-//   revolute     p_B − p_A = 0,  a3·b1 = 0, a3·b2 = 0                      5 (axis a3)
-//   cylindrical  a1·d = 0, a2·d = 0 (d = p_B − p_A), a3·b1 = 0, a3·b2 = 0   4 (axis a3)
-//   prismatic    cylindrical and a1·b2 = 0                                  5 (axis a3)
-//   planar       a3·d = 0,  a3·b1 = 0, a3·b2 = 0                            3 (plane ⊥ a3)
-//   fixed        p_B − p_A = 0,  a2·b3 = 0, a3·b1 = 0, a1·b2 = 0            6 (clamp, rigid link)
-//   point_on_line   a1·d = 0, a2·d = 0                                      2 (B's point on A's axis a3)
-//   point_on_plane  a3·d = 0                                                1 (B's point in the plane ⊥ a3;
-//                   with planar, the supports and symmetry conditions of shells and plates)
-// Drivers (prescribed motion as a time function) add to a revolute or cylindrical joint the angle
+// B = (p_B, b1, b2, b3) the one on node 2, the joint axis is the third marker axis, and every joint
+// equation is a sum of dot products of a1, a2, a3, b1, b2, b3, d = p_B − p_A and the world axes
+// e_x, e_y, e_z (e.g. revolute: e_x·d, e_y·d, e_z·d, a3·b1, a3·b2). The joint types are the rows of
+// one table, spatial_joint_kinds() (spatial_joints.cpp): name, equations, scene keys and drivers.
+// The constraint evaluation (Φ, and by AD Φ_q, Φ_t, the acceleration term), the closed-form
+// geometric stiffness, the equation count and the equation names all read that table, so adding a
+// joint type is one row there.
+// Drivers (prescribed motion as a time function) add to a joint whose row allows it the angle
 // ϕ of node 1's marker relative to node 2's about the axis, a1·(cos φ(t) b2 − sin φ(t) b1) =
-// sin(ϕ − φ(t)) = 0, and to a prismatic or cylindrical joint the translation of node 1's marker
-// relative to node 2's along the axis, (p_A − p_B)·b3 − u(t) = 0 — body1 moving relative to
-// body2 (usually the ground), as a user reads "crank driven at angle φ(t)".
+// sin(ϕ − φ(t)) = 0, and the translation of node 1's marker relative to node 2's along the axis,
+// (p_A − p_B)·b3 − u(t) = 0 — body1 moving relative to body2 (usually the ground), as a user reads
+// "crank driven at angle φ(t)". They are equations of the same form with a time-dependent weight.
 // Φ_q, the geometric stiffness ∂(Φ_qᵀλ)/∂q, Φ_t and the acceleration term are exact derivatives
 // of these equations (model/spatial_kernel.hpp); they are checked against finite differences.
 //
@@ -49,27 +45,76 @@ struct SpatialMarker {
   }
 };
 
-enum class SpatialJointType { Spherical, Universal, Revolute, Cylindrical, Prismatic, Planar, Fixed, PointOnLine, PointOnPlane };
-const char* to_string(SpatialJointType t);
-/// Number of equations of a joint type without drivers.
-int equations_of(SpatialJointType t);
+/// The vectors joint equations are written in: the axes of marker A (node 1) and of marker B
+/// (node 2 or the ground), d = p_B − p_A, and the fixed world axes.
+enum class MarkerVector : unsigned char { a1, a2, a3, b1, b2, b3, d, e_x, e_y, e_z };
+
+/// coefficient · (u·v).
+struct SpatialJointTerm {
+  MarkerVector u, v;
+  double coefficient = 1.0;
+};
+
+/// One joint equation, Σ coefficient · (u·v) = 0, and its name in messages and output ("a3·b1";
+/// "x", "y", "z" for e_x·d, e_y·d, e_z·d: the components of p_B − p_A).
+struct SpatialJointEquation {
+  std::vector<SpatialJointTerm> terms;
+  std::string name;
+};
+/// u·v, named after its vectors.
+SpatialJointEquation dot(MarkerVector u, MarkerVector v);
+/// Sums and multiples of equations (the name follows: "a1·b2 + a2·b1", "−b3·d").
+SpatialJointEquation operator+(SpatialJointEquation f, const SpatialJointEquation& g);
+SpatialJointEquation operator*(double c, SpatialJointEquation f);
+
+/// A joint type: one row of spatial_joint_kinds().
+struct SpatialJointKind {
+  enum Keys : unsigned { no_keys = 0, axis = 1, axis2 = 2, reference = 4 };
+  enum Drivers : unsigned { no_drivers = 0, angle = 1, displacement = 2 };
+  /// A row with its names and count filled in; throws std::logic_error on an equation without
+  /// terms, a product of two world axes (a constant) or two equations of the same name.
+  static SpatialJointKind make(std::string name, std::string doc, std::vector<SpatialJointEquation> equations,
+                               unsigned keys, unsigned drivers);
+
+  std::string name;  ///< the scene's `type`, and Constraint::type()
+  std::string doc;   ///< one line: the relative motion it allows
+  std::vector<SpatialJointEquation> equations;
+  std::vector<std::string> equation_names;  ///< equations[k].name
+  bool needs_axis = false;           ///< scene key `axis` (a3; the joint frame of a marker otherwise)
+  bool needs_axis2 = false;          ///< scene key `axis2` (a2, with a1 = axis: universal)
+  bool takes_reference = false;      ///< scene key `reference` (a1 with an axis, the frame without)
+  bool angle_driver = false;         ///< driver `angle` (rotation about a3)
+  bool displacement_driver = false;  ///< driver `displacement` (translation along a3)
+  int num_equations = 0;             ///< equations.size(), without drivers
+};
+
+/// Every spatial joint type, in the order of the scene reader's messages.
+const std::vector<SpatialJointKind>& spatial_joint_kinds();
+/// The row named `name`, nullptr if there is none.
+const SpatialJointKind* find_spatial_joint_kind(const std::string& name);
+/// "spherical, universal, …": the names of the rows, for messages.
+std::string spatial_joint_kind_names();
 
 class SpatialJoint final : public Constraint {
  public:
   /// `nodes` are the joint's spatial nodes (one or two); the markers refer to them by slot.
-  SpatialJoint(std::string name, std::vector<int> nodes, SpatialJointType type, SpatialMarker a, SpatialMarker b,
-               TimeFunctionPtr angle = nullptr, TimeFunctionPtr displacement = nullptr);
+  /// `kind` must outlive the joint (the rows of spatial_joint_kinds() do); a driver the row does
+  /// not allow throws std::invalid_argument.
+  SpatialJoint(std::string name, std::vector<int> nodes, const SpatialJointKind& kind, SpatialMarker a,
+               SpatialMarker b, TimeFunctionPtr angle = nullptr, TimeFunctionPtr displacement = nullptr);
 
-  const char* type() const override { return to_string(type_); }
+  const char* type() const override { return kind_->name.c_str(); }
   std::unique_ptr<Constraint> clone() const override { return std::make_unique<SpatialJoint>(*this); }
-  SpatialJointType joint_type() const { return type_; }
+  const SpatialJointKind& kind() const { return *kind_; }
   int size() const override { return size_; }
+  /// The row's equation names, then "angle" and "displacement" for the drivers.
+  std::string equation_name(int k) const override;
   const SpatialMarker& marker_a() const { return a_; }
   const SpatialMarker& marker_b() const { return b_; }
 
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   /// K_Φ = ∂(Φ_qᵀλ)/∂δ' in closed form (every equation is a sum of dot products of marker axes,
-  /// points and d: spatial_joints.cpp), ~20× cheaper than nested AD.
+  /// d and world axes: spatial_joints.cpp), ~20× cheaper than nested AD.
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
                            Eigen::MatrixXd& k) const override;
   /// The same by nested forward AD of the equations (model/spatial_kernel.hpp): the check of the
@@ -86,10 +131,11 @@ class SpatialJoint final : public Constraint {
   void operator()(const Pose<S>* frames, const S& t, KernelVector<S>& out) const;
 
  private:
-  SpatialJointType type_;
+  const SpatialJointKind* kind_;
   SpatialMarker a_, b_;
   TimeFunctionPtr angle_, displacement_;
   int size_;
+  unsigned uses_ = 0;  // bit k: the equations (with drivers) use MarkerVector k
 };
 
 }  // namespace alphaflex

@@ -29,6 +29,13 @@ class Constraint {
   virtual const char* type() const = 0;
   /// Number of equations (and multipliers).
   virtual int size() const = 0;
+  /// Name of equation k (0-based) in messages and output, e.g. "a3·b1"; empty if it has none.
+  virtual std::string equation_name(int /*k*/) const { return ""; }
+  /// "equation 4 (a3·b1)": equation k (0-based) as messages name it.
+  std::string equation_label(int k) const {
+    const std::string n = equation_name(k);
+    return "equation " + std::to_string(k + 1) + (n.empty() ? "" : " (" + n + ")");
+  }
 
   /// Φ(q, t) and Φ_q (size() × local dofs).
   virtual void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const = 0;

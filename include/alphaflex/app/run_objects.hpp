@@ -1,0 +1,41 @@
+#pragma once
+// The objects of a run (`alphaflex run`, `alphaflex modes`) whose destructors are collective
+// (PETSc matrices and vectors, MUMPS, the parallel HDF5 file): they live outside the run's body,
+// so that after an error they are destroyed only once the ranks know that they all failed.
+#include <mpi.h>
+
+#include <exception>
+#include <memory>
+
+#include "alphaflex/app/exit_agreement.hpp"
+#include "alphaflex/assembly/saddle_point_system.hpp"
+#include "alphaflex/integrators/generalized_alpha.hpp"
+#include "alphaflex/io/results_writer.hpp"
+#include "alphaflex/partition/subdomain.hpp"
+#include "alphaflex/solvers/linear_solver.hpp"
+
+namespace alphaflex {
+
+/// Members go in reverse order of destruction.
+struct RunObjects {
+  std::unique_ptr<Subdomain> sub;
+  std::unique_ptr<SaddlePointSystem> system;
+  std::unique_ptr<LinearSolver> solver;
+  std::unique_ptr<GeneralizedAlpha> integrator;
+  std::unique_ptr<ResultsWriter> writer;
+};
+
+/// body(objects): an error one rank only saw ends the job (fail_together) before a collective
+/// destructor waits for ranks that are elsewhere; one that every rank saw is rethrown.
+template <class Body>
+auto run_with_objects(MPI_Comm exit_comm, double exit_timeout, Body body) -> decltype(body(std::declval<RunObjects&>())) {
+  RunObjects objects;
+  try {
+    return body(objects);
+  } catch (const std::exception& e) {
+    fail_together(exit_comm, exit_code_of(e), e.what(), exit_timeout);
+    throw;
+  }
+}
+
+}  // namespace alphaflex
