@@ -146,6 +146,9 @@ TEST(StudyErrors, MapAsKeyIsNamed) {
             f + ":2: study: expected key names, found a list or a map used as a key");
   EXPECT_EQ(error("study:\n  h: [1e-3]\n  mode: oscillation\n  settings:\n    - label: a\n      newton:\n        ? [x]\n        : 1\n"),
             f + ":7: study.settings[a].newton: expected key names, found a list or a map used as a key");
+  // A 5000-character value is refused with its length, not quoted (the fuzz test's second study finding).
+  EXPECT_EQ(error("study:\n  h: [1e-3]\n  mode: " + std::string(5000, 'x') + "\n"),
+            f + ":3: study.mode: expected a string of at most 4096 characters, got 5000");
   // --study-set goes through the scene's override function: errors name the option.
   EXPECT_EQ(error("study:\n  h: [1e-3]\n  mode: oscillation\n", {"t_end=-1"}),
             f + ": --study-set t_end=-1: study.t_end: expected a positive final time (s), got -1");
