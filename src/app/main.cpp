@@ -3,6 +3,7 @@
 //   alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5] [PETSc options]
 //   alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]
 //                   [--study-set key=value ...] [--no-plots] [PETSc options]
+//   alphaflex keys [--check FILE | --update FILE]
 //   alphaflex modes SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5]
 //                   [PETSc/SLEPc options]
 //
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <unistd.h>
 #include <iostream>
 #include <string>
@@ -23,6 +26,7 @@
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/io/schema.hpp"
 #include "alphaflex/io/scene_modes.hpp"
 #include "alphaflex/study/study.hpp"
 
@@ -32,6 +36,7 @@ const char* kUsage =
     "usage: alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5] [PETSc options]\n"
     "       alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]\n"
     "                       [--study-set key=value ...] [--no-plots] [PETSc options]\n"
+    "       alphaflex keys [--check FILE | --update FILE]\n"
     "       alphaflex modes SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5]\n"
     "                       [PETSc/SLEPc options]\n"
     "\n"
@@ -46,6 +51,9 @@ const char* kUsage =
     "  --study FILE       the study map (a file with one top-level study: key)\n"
     "  --study-set k=v    override a study key, e.g. --study-set h=[1e-3,5e-4]\n"
     "  --no-plots         write the CSV only\n"
+    "  keys: the key tables of every scene and study section, from the reader's schemas (markdown);\n"
+    "  --update FILE rewrites the tables between <!-- keys:NAME --> and <!-- /keys --> in FILE,\n"
+    "  --check FILE exits 1 if FILE's tables differ from the schemas (docs/input.md)\n"
     "  modes: eigenfrequencies and mode shapes of the scene linearized about its initial state, its\n"
     "  static equilibrium (solver.analysis: static, solver.initial_static) or --restart's checkpoint;\n"
     "  writes OUTDIR/NAME_modes.csv and NAME_modeshapes.xdmf; keys modes.count/below/shift, options\n"
@@ -185,6 +193,53 @@ void study_command(const CommandLine& cl, int rank, std::string& message) {
     for (const auto& f : res.files) std::cout << "wrote " << f << "\n";
 }
 
+// `alphaflex keys`: the key tables generated from the schemas (no PETSc, no MPI). Exit 0, 1 when
+// --check finds a difference or a marker names no schema, 2 for a bad command line.
+int keys_command(int argc, char** argv) {
+  std::vector<const alphaflex::input::Schema*> schemas = alphaflex::input::scene_schemas();
+  for (const auto* s : alphaflex::study::schemas()) schemas.push_back(s);
+  if (argc == 2) {
+    for (const auto* s : schemas) std::cout << "### " << s->name << "\n\n" << s->markdown() << "\n";
+    return 0;
+  }
+  const std::string option = argv[2];
+  if (argc != 4 || (option != "--check" && option != "--update")) {
+    std::cerr << "alphaflex: keys takes no argument, --check FILE or --update FILE\n\n" << kUsage;
+    return 2;
+  }
+  const std::string file = argv[3];
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    std::cerr << "alphaflex: " << file << ": cannot open the file\n";
+    return 1;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    std::vector<std::string> unused;
+    const std::string updated = alphaflex::input::update_key_tables(text.str(), schemas, file, &unused);
+    if (!unused.empty()) {  // every schema's table is in the document
+      std::cerr << "alphaflex: " << file << ": no key-table marker for";
+      for (const auto& n : unused) std::cerr << " " << n;
+      std::cerr << "\n";
+      if (option == "--check") return 1;
+    }
+    if (option == "--update") {
+      if (updated != text.str()) std::ofstream(file, std::ios::binary) << updated;
+      return 0;
+    }
+    if (updated != text.str()) {
+      std::cerr << "alphaflex: " << file << ": the key tables differ from the reader's schemas; "
+                << "run `alphaflex keys --update " << file << "` and review the difference\n";
+      return 1;
+    }
+    return 0;
+  } catch (const alphaflex::InputError& e) {
+    std::cerr << "alphaflex: " << e.what() << "\n";
+    return 1;
+  }
+}
+
 // `alphaflex modes` (docs/modes.md): the scene and its modes: keys read on every rank, the modes
 // computed together, the table printed by rank 0.
 void modes_command(const CommandLine& cl, int rank, MPI_Comm exit_comm, double exit_timeout, std::string& message) {
@@ -204,6 +259,7 @@ void modes_command(const CommandLine& cl, int rank, MPI_Comm exit_comm, double e
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::strcmp(argv[1], "keys") == 0) return keys_command(argc, argv);
   CommandLine cl = parse(argc, argv);
   if (cl.command == "help") {
     std::cout << kUsage;

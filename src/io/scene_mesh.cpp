@@ -17,38 +17,94 @@
 namespace alphaflex::scene_detail {
 namespace {
 
+// Key schemas of the mesh sections (docs/input.md, generated tables).
+const Schema kBeamMaterial{"beams.section.material", {
+    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus", Range::positive(), "Young's modulus (Pa)"},
+    {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio (G = E/(2(1 + ν))), in (−1, 0.5)"},
+    {"rho", KeyType::Number, "kg/m³", kRequired, "density", Range::positive(), "density (kg/m^3)"},
+    {"shape", KeyType::Choice, "–", kRequired, "cross-section shape", {}, "", "", {"rectangle", "circle", "tube"}},
+    {"width", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 2", Range::positive(), "width (m)"},
+    {"height", KeyType::Number, "m", "– (**required** for `rectangle`)", "along section axis 3", Range::positive(), "height (m)"},
+    {"diameter", KeyType::Number, "m", "– (**required** for `circle`, `tube`)", "outer diameter", Range::positive(), "diameter (m)"},
+    {"wall_thickness", KeyType::Number, "m", "– (**required** for `tube`)", "at most the radius", Range::positive(), "wall thickness (m)"}}};
+const Schema kBeamProperties{"beams.section.properties", {
+    {"EA", KeyType::Number, "N", kRequired, "axial stiffness", Range::positive(), "axial stiffness (N)"},
+    {"GA2", KeyType::Number, "N", kRequired, "shear stiffness along axis 2 (shear coefficient included)", Range::positive(), "shear stiffness (N)"},
+    {"GA3", KeyType::Number, "N", kRequired, "shear stiffness along axis 3 (shear coefficient included)", Range::positive(), "shear stiffness (N)"},
+    {"GJ", KeyType::Number, "N·m²", kRequired, "torsional stiffness", Range::positive(), "torsional stiffness (N m^2)"},
+    {"EI2", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 2 (deflection along axis 3)", Range::positive(), "bending stiffness (N m^2)"},
+    {"EI3", KeyType::Number, "N·m²", kRequired, "bending stiffness about axis 3", Range::positive(), "bending stiffness (N m^2)"},
+    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length", Range::positive(), "mass per length (kg/m)"},
+    {"rhoI2", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 2", Range::positive(), "mass moment per length (kg m)"},
+    {"rhoI3", KeyType::Number, "kg·m", kRequired, "mass moment per length about axis 3", Range::positive(), "mass moment per length (kg m)"},
+    {"rhoI_polar", KeyType::Number, "kg·m", "rhoI2 + rhoI3", "polar mass moment per length", Range::positive(), "polar mass moment per length (kg m)"}}};
+const Schema kPlanarSection{"beams.2d.section", {
+    {"EA", KeyType::Number, "N", kRequired, "axial stiffness", Range::positive(), "axial stiffness (N)"},
+    {"GA", KeyType::Number, "N", kRequired, "in-plane shear stiffness", Range::positive(), "shear stiffness (N)"},
+    {"EI", KeyType::Number, "N·m²", kRequired, "bending stiffness in the plane", Range::positive(), "bending stiffness (N m^2)"},
+    {"rhoA", KeyType::Number, "kg/m", kRequired, "mass per length", Range::positive(), "mass per length (kg/m)"},
+    {"rhoI", KeyType::Number, "kg·m", kRequired, "rotary inertia per length", Range::positive(), "rotary inertia per length (kg m)"}}};
+const Schema kMesh{"mesh", {
+    {"file", KeyType::Text, "–", kRequired, "a .geo or .msh, relative to the scene file's directory"},
+    {"elements", KeyType::Integer, "–", "the .geo's own", "every curve of a .geo meshed with this many equal elements (not with `element_size`; not for .msh)", Range::closed(1, 10000000)},
+    {"element_size", KeyType::Number, "m", "the .geo's own", "largest element length of a .geo", Range::positive(), "element size (m)"},
+    {"parameters", KeyType::Map, "as the .geo says", "the .geo's defaults", "values of the .geo's `DefineConstant[ x = {v, Name \"x\"} ]`"}}};
+const Schema kBeams3d{"beams.3d", {
+    {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in mesh order"},
+    {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh, used by one beam only"},
+    {"section", KeyType::Map, "–", kRequired, "`beams.section.material` or `beams.section.properties`"},
+    {"orientation", KeyType::Vec3, "–", kRequired, "direction of the section's axis 2 (projected ⊥ to each element); not parallel to an element"}}};
+const Schema kBeams2d{"beams.2d", {
+    {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in mesh order"},
+    {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh (in the x-y plane), used by one beam only"},
+    {"section", KeyType::Map, "–", kRequired, "`beams.2d.section` or `beams.section.material`"}}};
+const Schema kShells{"shells", {
+    {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in the group's element order"},
+    {"group", KeyType::Text, "–", kRequired, "a physical surface group, used by one beam or shell block only"},
+    {"thickness", KeyType::Number, "m", "**required** (unless `section`)", "shell thickness", Range::positive(), "thickness (m)"},
+    {"material", KeyType::Map, "Pa, –, kg/m³", "**required** (unless `section`)", "`{E, nu, rho}`: isotropic, E > 0, −1 < ν < 0.5, ρ ≥ 0"},
+    {"section", KeyType::Map, "–", "–", "a laminate instead of `thickness` and `material` (`shells.section`)"},
+    {"material_axis", KeyType::Vec3, "–", "[1, 0, 0]", "material axis 1, projected onto each element"},
+    {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area (docs/theory/shell.md)", Range::positive(), "drilling stiffness factor (of G t)"},
+    {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there (folds, T-junctions)", Range::positive(), "angle (degrees)"}}};
+const Schema kShellMaterial{"shells.material", {
+    {"E", KeyType::Number, "Pa", kRequired, "Young's modulus", Range::positive(), "Young's modulus (Pa)"},
+    {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio; −1 < ν < 0.5"},
+    {"rho", KeyType::Number, "kg/m³", kRequired, "density; ≥ 0"}}};
+const Schema kShellLaminate{"shells.section", {
+    {"A", KeyType::List, "N/m", kRequired, "membrane stiffness, 3×3 rows, Voigt order (11, 22, 12)", {}, "", "3×3 list of rows"},
+    {"B", KeyType::List, "N", "zero", "membrane–bending coupling, 3×3 rows", {}, "", "3×3 list of rows"},
+    {"D", KeyType::List, "N·m", kRequired, "bending stiffness, 3×3 rows", {}, "", "3×3 list of rows"},
+    {"As", KeyType::List, "N/m", kRequired, "transverse shear stiffness, 2×2 rows", {}, "", "2×2 list of rows"},
+    {"thickness", KeyType::Number, "m", kRequired, "laminate thickness", Range::positive(), "thickness (m)"},
+    {"mass", KeyType::Number, "kg/m²", kRequired, "mass per area"},
+    {"rotary", KeyType::Number, "kg", kRequired, "rotary inertia per area"}}};
+
+
 BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key) {
   if (!n.IsMap()) rd.fail(n, key, "expected a map of section properties");
   try {
     if (n["E"] || n["shape"]) {
-      rd.keys(n, key, {"E", "nu", "rho", "shape", "width", "height", "diameter", "wall_thickness"});
-      const double E = rd.positive(rd.need(n, "E", key), key + ".E", "Young's modulus (Pa)");
-      const double nu = rd.number(rd.need(n, "nu", key), key + ".nu");
-      const double rho = rd.positive(rd.need(n, "rho", key), key + ".rho", "density (kg/m^3)");
-      const std::string shape = rd.text(rd.need(n, "shape", key), key + ".shape");
+      const Section m(rd, n, key, kBeamMaterial);
+      // Keys a shape requires (the schema marks them required only for that shape).
+      auto shape_key = [&](const char* k) {
+        rd.need(n, k, key);
+        return m.number(k);
+      };
+      const double E = m.number("E"), nu = m.number("nu"), rho = m.number("rho");
       SectionShape s;
-      if (shape == "rectangle") {
-        s = SectionShape::rectangle(rd.positive(rd.need(n, "width", key), key + ".width", "width (m)"),
-                                    rd.positive(rd.need(n, "height", key), key + ".height", "height (m)"));
-      } else if (shape == "circle") {
-        s = SectionShape::circle(rd.positive(rd.need(n, "diameter", key), key + ".diameter", "diameter (m)"));
-      } else if (shape == "tube") {
-        s = SectionShape::tube(rd.positive(rd.need(n, "diameter", key), key + ".diameter", "outer diameter (m)"),
-                               rd.positive(rd.need(n, "wall_thickness", key), key + ".wall_thickness", "wall thickness (m)"));
-      } else {
-        rd.fail(n["shape"], key + ".shape", "unknown shape '" + shape + "' (expected rectangle, circle, tube)");
+      switch (m.choice("shape")) {
+        case 0: s = SectionShape::rectangle(shape_key("width"), shape_key("height")); break;
+        case 1: s = SectionShape::circle(shape_key("diameter")); break;
+        default: s = SectionShape::tube(shape_key("diameter"), shape_key("wall_thickness"));
       }
       return BeamSection::from_material(E, nu, rho, s);
     }
-    rd.keys(n, key, {"EA", "GA2", "GA3", "GJ", "EI2", "EI3", "rhoA", "rhoI2", "rhoI3", "rhoI_polar"});
-    auto v = [&](const char* k, const char* what) { return rd.positive(rd.need(n, k, key), key + "." + k, what); };
+    const Section p(rd, n, key, kBeamProperties);
     std::optional<double> polar;
-    if (n["rhoI_polar"]) polar = rd.positive(n["rhoI_polar"], key + ".rhoI_polar", "polar mass moment per length (kg m)");
-    return BeamSection::from_properties(v("EA", "axial stiffness (N)"), v("GA2", "shear stiffness (N)"),
-                                        v("GA3", "shear stiffness (N)"), v("GJ", "torsional stiffness (N m^2)"),
-                                        v("EI2", "bending stiffness (N m^2)"), v("EI3", "bending stiffness (N m^2)"),
-                                        v("rhoA", "mass per length (kg/m)"), v("rhoI2", "mass moment per length (kg m)"),
-                                        v("rhoI3", "mass moment per length (kg m)"), polar);
+    if (p.has("rhoI_polar")) polar = p.number("rhoI_polar");
+    return BeamSection::from_properties(p.number("EA"), p.number("GA2"), p.number("GA3"), p.number("GJ"), p.number("EI2"),
+                                        p.number("EI3"), p.number("rhoA"), p.number("rhoI2"), p.number("rhoI3"), polar);
   } catch (const std::invalid_argument& e) {
     rd.fail(n, key, e.what());
   }
@@ -56,15 +112,15 @@ BeamSection read_section(Reader& rd, const YAML::Node& n, const std::string& key
 
 /// Reads `mesh` (path relative to the scene file) with the scene's options.
 MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
-  rd.keys(mn, "mesh", {"file", "elements", "element_size", "parameters"});
-  const YAML::Node fn = rd.need(mn, "file", "mesh");
-  const std::string given = rd.text(fn, "mesh.file");
+  const Section m(rd, mn, "mesh", kMesh);
+  const YAML::Node fn = m.node("file");
+  const std::string given = m.text("file");
   // Relative to the scene file's directory (inputs/x.yaml names ../meshes/y.geo).
   std::filesystem::path path(given);
   if (path.is_relative()) path = std::filesystem::path(rd.file()).parent_path() / path;
   MeshOptions opt;
-  if (mn["elements"]) opt.elements_per_curve = rd.integer(mn["elements"], "mesh.elements", 1, 10000000);
-  if (mn["element_size"]) opt.element_size = rd.positive(mn["element_size"], "mesh.element_size", "element size (m)");
+  if (m.has("elements")) opt.elements_per_curve = m.integer("elements");
+  if (m.has("element_size")) opt.element_size = m.number("element_size");
   if (const YAML::Node p = mn["parameters"]) {
     if (!p.IsMap()) rd.fail(p, "mesh.parameters", "expected a map name: value (DefineConstant names of the .geo)");
     for (const auto& kv : p) {
@@ -127,23 +183,21 @@ ShellSection read_shell_section(Reader& rd, const YAML::Node& s, const std::stri
         rd.fail(sec, path + ".section", "give either thickness and material, or a laminate section (with its own thickness)");
       const std::string key = path + ".section";
       if (!sec.IsMap()) rd.fail(sec, key, "expected a map {A, B, D, As, thickness, mass, rotary}");
-      rd.keys(sec, key, {"A", "B", "D", "As", "thickness", "mass", "rotary"});
+      const Section laminate(rd, sec, key, kShellLaminate);
       const Eigen::Matrix3d A = matrix(sec["A"], key + ".A", 3, "N/m");
       const Eigen::Matrix3d B = sec["B"] ? Eigen::Matrix3d(matrix(sec["B"], key + ".B", 3, "N")) : Eigen::Matrix3d::Zero();
       const Eigen::Matrix3d D = matrix(sec["D"], key + ".D", 3, "N m");
       const Eigen::Matrix2d As = matrix(sec["As"], key + ".As", 2, "N/m");
-      const double t = rd.positive(rd.need(sec, "thickness", key), key + ".thickness", "thickness (m)");
-      const double mass = rd.number(rd.need(sec, "mass", key), key + ".mass");
-      const double rotary = rd.number(rd.need(sec, "rotary", key), key + ".rotary");
+      const double t = laminate.number("thickness"), mass = laminate.number("mass"), rotary = laminate.number("rotary");
       return ShellSection::laminate(A, B, D, As, t, mass, rotary);
     }
-    const double t = rd.positive(rd.need(s, "thickness", path), path + ".thickness", "thickness (m)");
+    const Section shell(rd, s, path, kShells);
+    rd.need(s, "thickness", path);  // required unless `section`
+    const double t = shell.number("thickness");
     const YAML::Node m = rd.need(s, "material", path);
     if (!m.IsMap()) rd.fail(m, path + ".material", "expected a map {E, nu, rho}");
-    rd.keys(m, path + ".material", {"E", "nu", "rho"});
-    const double E = rd.positive(rd.need(m, "E", path + ".material"), path + ".material.E", "Young's modulus (Pa)");
-    const double nu = rd.number(rd.need(m, "nu", path + ".material"), path + ".material.nu");
-    const double rho = rd.number(rd.need(m, "rho", path + ".material"), path + ".material.rho");
+    const Section material(rd, m, path + ".material", kShellMaterial);
+    const double E = material.number("E"), nu = material.number("nu"), rho = material.number("rho");
     return ShellSection::isotropic(E, nu, rho, t);
   } catch (const std::invalid_argument& e) {
     rd.fail(s["section"] ? s["section"] : s["material"] ? s["material"] : s, path, e.what());
@@ -161,7 +215,7 @@ void read_shells(Reader& rd, const YAML::Node& sl, const MeshData& mesh, Model& 
     const YAML::Node s = sl[i];
     std::string path = "shells[" + std::to_string(i) + "]";
     if (!s.IsMap()) rd.fail(s, path, "expected a map with name, group, thickness, material");
-    rd.keys(s, path, {"name", "group", "thickness", "material", "section", "material_axis", "drilling", "kink_angle"});
+    rd.keys(s, path, kShells);
     const std::string name = rd.text(rd.need(s, "name", path), path + ".name");
     path = "shells[" + name + "]";
     if (!names.insert(name).second) rd.fail(s["name"], path + ".name", "a shell named '" + name + "' exists already");
@@ -176,8 +230,9 @@ void read_shells(Reader& rd, const YAML::Node& sl, const MeshData& mesh, Model& 
     if (!groups_used.insert(group).second) rd.fail(s["group"], path + ".group", "group '" + group + "' is used by another beam or shell already");
     const ShellSection section = read_shell_section(rd, s, path);
     ShellOptions options;
-    if (s["drilling"]) options.drilling_factor = rd.positive(s["drilling"], path + ".drilling", "drilling stiffness factor (of G t)");
-    const double kink = s["kink_angle"] ? rd.positive(s["kink_angle"], path + ".kink_angle", "angle (degrees)") : 20.0;
+    const Section shell(rd, s, path, kShells);
+    options.drilling_factor = shell.number("drilling", options.drilling_factor);
+    const double kink = shell.number("kink_angle", 20.0);
     const bool axis_given = static_cast<bool>(s["material_axis"]);
     const Eigen::Vector3d axis = axis_given ? rd.direction(s["material_axis"], path + ".material_axis") : Eigen::Vector3d::UnitX();
     std::vector<std::vector<Eigen::Vector3d>> dirs;
@@ -296,7 +351,7 @@ void read_mesh_and_beams(Reader& rd, SceneBuilder& sb, const YAML::Node& root, M
     const YAML::Node b = bl[i];
     std::string path_b = "beams[" + std::to_string(i) + "]";
     if (!b.IsMap()) rd.fail(b, path_b, "expected a map with name, group, section, orientation");
-    rd.keys(b, path_b, {"name", "group", "section", "orientation"});
+    rd.keys(b, path_b, kBeams3d);
     const std::string name = rd.text(rd.need(b, "name", path_b), path_b + ".name");
     path_b = "beams[" + name + "]";
     if (!beam_names.insert(name).second) rd.fail(b["name"], path_b + ".name", "a beam named '" + name + "' exists already");
@@ -368,7 +423,7 @@ void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model
     const YAML::Node b = bl[i];
     std::string path_b = "beams[" + std::to_string(i) + "]";
     if (!b.IsMap()) rd.fail(b, path_b, "expected a map with name, group, section");
-    rd.keys(b, path_b, {"name", "group", "section"});
+    rd.keys(b, path_b, kBeams2d);
     const std::string name = rd.text(rd.need(b, "name", path_b), path_b + ".name");
     path_b = "beams[" + name + "]";
     if (!beam_names.insert(name).second) rd.fail(b["name"], path_b + ".name", "a beam named '" + name + "' exists already");
@@ -386,12 +441,8 @@ void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model
     } else {
       const std::string key = path_b + ".section";
       if (!sn.IsMap()) rd.fail(sn, key, "expected a map of section properties");
-      rd.keys(sn, key, {"EA", "GA", "EI", "rhoA", "rhoI"});
-      EA = rd.positive(rd.need(sn, "EA", key), key + ".EA", "axial stiffness (N)");
-      GA = rd.positive(rd.need(sn, "GA", key), key + ".GA", "shear stiffness (N)");
-      EI = rd.positive(rd.need(sn, "EI", key), key + ".EI", "bending stiffness (N m^2)");
-      rhoA = rd.positive(rd.need(sn, "rhoA", key), key + ".rhoA", "mass per length (kg/m)");
-      rhoI = rd.positive(rd.need(sn, "rhoI", key), key + ".rhoI", "rotary inertia per length (kg m)");
+      const Section p(rd, sn, key, kPlanarSection);
+      EA = p.number("EA"), GA = p.number("GA"), EI = p.number("EI"), rhoA = p.number("rhoA"), rhoI = p.number("rhoI");
     }
     for (size_t e = 0; e < block.elements.size(); ++e) {
       const int ma = block.elements[e][0], mb = block.elements[e][1];
@@ -421,6 +472,10 @@ void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model
     }
   }
   check_named_points(rd, mn, mesh, node_of);
+}
+
+std::vector<const Schema*> mesh_schemas() {
+  return {&kMesh, &kBeams3d, &kBeams2d, &kBeamMaterial, &kBeamProperties, &kPlanarSection, &kShells, &kShellMaterial, &kShellLaminate};
 }
 
 }  // namespace alphaflex::scene_detail

@@ -19,7 +19,9 @@ namespace {
 Eigen::Matrix3d read_orientation(Reader& rd, const YAML::Node& n, const std::string& key) {
   if (n.IsSequence()) return exp_so3<double>(rd.vec3(n, key));
   if (!n.IsMap()) rd.fail(n, key, "expected a rotation vector [rx, ry, rz] (rad) or {axis: [x, y, z], angle: a}");
-  rd.keys(n, key, {"axis", "angle"});
+  static const Schema rotation{"rotation", {{"axis", KeyType::Vec3, "–", kRequired, "rotation axis; non-zero"},
+                                           {"angle", KeyType::Number, "rad", kRequired, "rotation angle about `axis`"}}};
+  rd.keys(n, key, rotation);
   const Eigen::Vector3d axis = rd.direction(rd.need(n, "axis", key), key + ".axis");
   return exp_so3<double>(Eigen::Vector3d(axis * rd.number(rd.need(n, "angle", key), key + ".angle")));
 }
@@ -101,224 +103,234 @@ SpatialMarker marker_at(const Model& m, int node, int slot, const Eigen::Vector3
   return mk;
 }
 
-}  // namespace
 
-void read_spatial_bodies(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model, const Eigen::Vector3d& gravity) {
-  if (!list) return;
-  if (!list.IsSequence()) rd.fail(list, "bodies", "expected a list of bodies");
-  for (size_t i = 0; i < list.size(); ++i) {
-    const YAML::Node b = list[i];
-    std::string path;
-    const std::string name = rd.item_name(b, "bodies", i, "expected a map with name, type, ...", path);
-    if (name == "ground") rd.fail(b["name"], path + ".name", "'ground' is reserved for the fixed frame");
-    if (model.find_node(name) >= 0) rd.fail(b["name"], path + ".name", "a body or mesh point named '" + name + "' exists already");
-    const std::string type = rd.text(rd.need(b, "type", path), path + ".type");
-    if (type != "rigid_body")
-      rd.fail(b["type"], path + ".type", "unknown body type '" + type + "' for dimension 3 (expected rigid_body; beams come from `beams`)");
-    rd.keys(b, path, {"name", "type", "mass", "inertia", "position", "orientation", "velocity", "angular_velocity", "markers"});
-    const double m = rd.positive(rd.need(b, "mass", path), path + ".mass", "mass (kg); a zero mass makes the mass matrix singular");
-    const Eigen::Matrix3d J = read_inertia(rd, rd.need(b, "inertia", path), path + ".inertia");
-    const Eigen::Vector3d x = rd.vec3(rd.need(b, "position", path), path + ".position");
-    const Eigen::Matrix3d R = b["orientation"] ? read_orientation(rd, b["orientation"], path + ".orientation")
-                                               : Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d v = rd.vec3(b, "velocity", path, Eigen::Vector3d::Zero());
-    const Eigen::Vector3d w = rd.vec3(b, "angular_velocity", path, Eigen::Vector3d::Zero());  // world frame
-    Node nd;
-    nd.name = name;
-    nd.kind = NodeKind::Frame3D;
-    nd.q0.resize(7);
-    store_pose(x, R, nd.q0.data());
-    nd.v0.resize(6);
-    nd.v0 << v, R.transpose() * w;  // Ω in the body frame
-    const int id = model.add_node(nd);
-    model.add_element(std::make_unique<RigidBody3D>(name, id, m, J, gravity));
-    // Markers: named frames fixed to the body (position and orientation in the body frame), for
-    // joints (marker1/marker2) and point sensors (marker).
-    if (const YAML::Node ml = b["markers"]) {
-      if (!ml.IsSequence()) rd.fail(ml, path + ".markers", "expected a list of {name, position, orientation}");
-      for (size_t k = 0; k < ml.size(); ++k) {
-        const YAML::Node mk = ml[k];
-        std::string mp = path + ".markers[" + std::to_string(k) + "]";
-        if (!mk.IsMap()) rd.fail(mk, mp, "expected a map {name, position, orientation}");
-        rd.keys(mk, mp, {"name", "position", "orientation"});
-        const std::string mname = rd.text(rd.need(mk, "name", mp), mp + ".name");
-        if (sb.markers.count(mname) || model.find_node(mname) >= 0)
-          rd.fail(mk["name"], mp + ".name", "the name '" + mname + "' is taken (marker names are unique in a scene)");
-        NamedMarker nm;
-        nm.node = id;
-        nm.position = rd.vec3(rd.need(mk, "position", mp), mp + ".position");
-        if (mk["orientation"]) nm.rotation = read_orientation(rd, mk["orientation"], mp + ".orientation");
-        sb.markers[mname] = nm;
-      }
+const Schema& marker_schema() {
+  static const Schema s{"bodies.3d.markers", {
+      {"name", KeyType::Text, "–", kRequired, "unique in the scene (among markers, bodies and mesh points)"},
+      {"position", KeyType::Vec3, "m", kRequired, "origin of the marker in the body frame"},
+      {"orientation", KeyType::Map, "rad", "identity", "rotation of the marker frame in the body frame", {}, "", "rotation"}}};
+  return s;
+}
+
+void read_rigid_body_3d(const Item& it) {
+  Reader& rd = it.rd;
+  const Section& k = it.keys;
+  const double m = k.number("mass");
+  const Eigen::Matrix3d J = read_inertia(rd, k.node("inertia"), it.at("inertia"));
+  const Eigen::Vector3d x = k.vec3("position");
+  const Eigen::Matrix3d R = k.has("orientation") ? read_orientation(rd, k.node("orientation"), it.at("orientation"))
+                                                 : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d v = k.vec3("velocity"), w = k.vec3("angular_velocity");  // w: world frame
+  Node nd;
+  nd.name = it.name;
+  nd.kind = NodeKind::Frame3D;
+  nd.q0.resize(7);
+  store_pose(x, R, nd.q0.data());
+  nd.v0.resize(6);
+  nd.v0 << v, R.transpose() * w;  // Ω in the body frame
+  const int id = it.model.add_node(nd);
+  it.model.add_element(std::make_unique<RigidBody3D>(it.name, id, m, J, it.sb.gravity));
+  // Markers: named frames fixed to the body (position and orientation in the body frame), for
+  // joints (marker1/marker2) and point sensors (marker).
+  if (const YAML::Node ml = k.node("markers")) {
+    if (!ml.IsSequence()) rd.fail(ml, it.at("markers"), "expected a list of {name, position, orientation}");
+    for (size_t i = 0; i < ml.size(); ++i) {
+      const YAML::Node mk = ml[i];
+      const std::string mp = it.at("markers[" + std::to_string(i) + "]");
+      if (!mk.IsMap()) rd.fail(mk, mp, "expected a map {name, position, orientation}");
+      const Section ms(rd, mk, mp, marker_schema());
+      const std::string mname = ms.text("name");
+      if (it.sb.markers.count(mname) || it.model.find_node(mname) >= 0)
+        rd.fail(mk["name"], mp + ".name", "the name '" + mname + "' is taken (marker names are unique in a scene)");
+      NamedMarker nm;
+      nm.node = id;
+      nm.position = ms.vec3("position");
+      if (ms.has("orientation")) nm.rotation = read_orientation(rd, ms.node("orientation"), mp + ".orientation");
+      it.sb.markers[mname] = nm;
     }
   }
 }
 
-void read_spatial_joints(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
-  if (!list) return;
-  if (!list.IsSequence()) rd.fail(list, "joints", "expected a list of joints");
-  for (size_t i = 0; i < list.size(); ++i) {
-    const YAML::Node j = list[i];
-    std::string path;
-    const std::string name = rd.item_name(j, "joints", i, "expected a map with name, type, ...", path);
-    if (model.find_constraint(name) >= 0) rd.fail(j["name"], path + ".name", "a joint named '" + name + "' exists already");
-    const std::string tname = rd.text(rd.need(j, "type", path), path + ".type");
-    // The joint types and the keys and drivers each takes: the table of joints/spatial_joints.cpp.
-    const SpatialJointKind* kind = find_spatial_joint_kind(tname);
-    if (!kind)
-      rd.fail(j["type"], path + ".type", "unknown joint type '" + tname + "' (expected " + spatial_joint_kind_names() + ")");
-    std::set<std::string> allowed{"name", "type", "body1", "body2", "location", "marker1", "marker2", "group", "group2"};
-    const bool has_axis = kind->needs_axis;
-    if (has_axis) allowed.insert("axis");
-    if (kind->needs_axis2) allowed.insert("axis2");
-    if (kind->takes_reference) allowed.insert("reference");
-    if (kind->angle_driver || kind->displacement_driver) allowed.insert("driver");
-    rd.keys(j, path, allowed);
-    // A marker (a named frame of a body) stands for the body, the location and the joint frame.
-    auto marker_of = [&](const char* key) -> const NamedMarker* {
-      if (!j[key]) return nullptr;
-      const std::string mn = rd.text(j[key], path + "." + key);
-      const auto it = sb.markers.find(mn);
-      if (it == sb.markers.end()) rd.fail(j[key], path + "." + key, "no marker named '" + mn + "' (markers are listed under a body's `markers`)");
-      return &it->second;
-    };
-    const NamedMarker* mk1 = marker_of("marker1");
-    const NamedMarker* mk2 = marker_of("marker2");
-    if (mk1 && j["body1"]) rd.fail(j["body1"], path + ".body1", "give either body1 or marker1");
-    if (mk2 && j["body2"]) rd.fail(j["body2"], path + ".body2", "give either body2 or marker2");
-    if (mk1 && j["location"]) rd.fail(j["location"], path + ".location", "marker1 fixes the location; remove one of them");
-    // `group`: one joint per node of a mesh group (a clamped or supported edge), named name[k],
-    // each at its node with that node as body1.
-    const MeshGroup* group = nullptr;
-    if (const YAML::Node g = j["group"]) {
-      for (const char* k : {"body1", "marker1", "location"})
-        if (j[k]) rd.fail(j[k], path + "." + k, "give either group (a joint at every node of a mesh group) or " + std::string(k));
-      group = &sb.mesh_group(g, path + ".group");
-    }
-    if (!mk1 && !j["body1"] && !group) rd.fail(j, path + ".body1", "missing (required): body1, marker1 or group");
-    if (j["group2"] && !group) rd.fail(j["group2"], path + ".group2", "group2 pairs the nodes of `group` with coincident ones: give group too");
-    if (j["group2"] && (j["body2"] || mk2))
-      rd.fail(j["group2"], path + ".group2", "give either group2 (the coincident node of another mesh group) or body2/marker2");
-    const int fixed_b2 = mk2 ? mk2->node : (j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1);
-    // (body1, body2) of each joint: one joint, or one per node of `group` (with body2, or with the
-    // node of `group2` at the same place: a hinge between two meshed parts that cross or touch).
-    std::vector<std::pair<int, int>> pairs;
-    if (!group) {
-      pairs.emplace_back(mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false), fixed_b2);
-    } else if (!j["group2"]) {
-      for (int n : group->nodes) pairs.emplace_back(n, fixed_b2);
-    } else {
-      const MeshGroup& other = sb.mesh_group(j["group2"], path + ".group2");
-      pairs = coincident_nodes(rd, *group, other, j["group2"], path + ".group2");
-    }
-    for (size_t k = 0; k < pairs.size(); ++k) {
-      const auto [b1, b2] = pairs[k];
-      const std::string jname = group ? name + "[" + std::to_string(k) + "]" : name;
-      if (group && k == 0)  // name[0], name[1], …: checked once per group, not once per joint
-        for (const auto& c : model.constraints())
-          if (c->name().rfind(name + "[", 0) == 0) rd.fail(j["name"], path + ".name", "a joint named '" + c->name() + "' exists already");
-      if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
-      const Pose<double> p1 = initial_pose(model, b1);
-      const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)
-                                  : j["location"] ? rd.vec3(j["location"], path + ".location")
-                                                  : p1.x;
-      // Joint frame (world, t = 0): a3 along the axis; universal: a1 = axis (on body 1), a2 = axis2.
-      // Without an axis key, a marker's frame is the joint frame (its z axis is the joint axis).
-      Eigen::Matrix3d R = mk1 ? Eigen::Matrix3d(p1.R * mk1->rotation) : p1.R;
-      if (mk1 && has_axis && !j["axis"]) {
-        R = p1.R * mk1->rotation;
-      } else if (kind->needs_axis2) {
-        const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
-        const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
-        if (std::fabs(a1.dot(a2)) > 1e-9)
-          rd.fail(j["axis2"], path + ".axis2", "the two axes of a universal joint must be perpendicular");
-        R.col(0) = a1;
-        R.col(1) = a2;
-        R.col(2) = a1.cross(a2);
-      } else if (has_axis) {
-        const Eigen::Vector3d a3 = rd.direction(rd.need(j, "axis", path), path + ".axis");
-        // a1: the `reference` direction (where a driver's angle is zero), else any perpendicular.
-        Eigen::Vector3d ref = j["reference"] ? rd.direction(j["reference"], path + ".reference")
-                                             : (std::fabs(a3.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
-        ref -= a3.dot(ref) * a3;
-        if (ref.norm() < 1e-9) rd.fail(j["reference"], path + ".reference", "must not be parallel to the axis");
-        R.col(0) = ref.normalized();
-        R.col(2) = a3;
-        R.col(1) = a3.cross(R.col(0));
-      } else if (j["reference"]) {
-        R = read_orientation(rd, j["reference"], path + ".reference");
-      }
-      TimeFunctionPtr angle, displacement;
-      if (const YAML::Node d = j["driver"]) {
-        rd.keys(d, path + ".driver", {"angle", "displacement"});
-        if (d["angle"]) {
-          if (!kind->angle_driver)
-            rd.fail(d["angle"], path + ".driver.angle", "a " + kind->name + " joint has no rotation to drive (use displacement)");
-          angle = rd.function(d["angle"], path + ".driver.angle");
-        }
-        if (d["displacement"]) {
-          if (!kind->displacement_driver)
-            rd.fail(d["displacement"], path + ".driver.displacement",
-                    "a " + kind->name + " joint has no translation to drive (use angle)");
-          displacement = rd.function(d["displacement"], path + ".driver.displacement");
-        }
-      }
-      if (mk2) {
-        const Pose<double> p2 = initial_pose(model, b2);
-        const Eigen::Vector3d at2 = p2.x + p2.R * mk2->position;
-        if ((at2 - loc).norm() > 1e-9 * std::max(1.0, loc.norm()))
-          rd.fail(j["marker2"], path + ".marker2",
-                  "is not at the joint's location at t = 0 (distance " + std::to_string((at2 - loc).norm()) + " m)");
-      }
-      std::vector<int> nodes{b1};
-      if (b2 >= 0) nodes.push_back(b2);
-      const SpatialMarker A = marker_at(model, b1, 0, loc, R);
-      const SpatialMarker B = marker_at(model, b2, 1, loc, R);
-      try {
-        model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, *kind, A, B, angle, displacement));
-      } catch (const std::invalid_argument& e) {
-        rd.fail(j, path, e.what());
-      }
-    }
-  }
+Schema spatial_joint_schema(const SpatialJointKind& kind) {
+  std::vector<Key> keys{
+      {"body1", KeyType::Text, "–", "– (or `marker1`, or `group`)", "the first body or beam/shell node; not `ground`"},
+      {"body2", KeyType::Text, "–", "`ground`", "the second body, node or `ground`; different from body1"},
+      {"location", KeyType::Vec3, "m", "body1's reference point", "world point of the joint at t = 0"},
+      {"marker1", KeyType::Text, "–", "–", "a marker of a body: stands for body1, the location and (without `axis`) the joint frame"},
+      {"marker2", KeyType::Text, "–", "–", "a marker of a body at the joint's location at t = 0: stands for body2"},
+      {"group", KeyType::Text, "–", "–", "a mesh group instead of body1: one joint NAME[k] per node of the group"},
+      {"group2", KeyType::Text, "–", "–", "with `group`: a second mesh group; one joint per pair of coincident nodes"}};
+  if (kind.needs_axis) keys.push_back({"axis", KeyType::Vec3, "–", kRequired + std::string(" (unless `marker1`)"), "joint axis (world, t = 0); non-zero"});
+  if (kind.needs_axis2) keys.push_back({"axis2", KeyType::Vec3, "–", kRequired, "second axis (world, t = 0), perpendicular to `axis`"});
+  if (kind.takes_reference)
+    keys.push_back(kind.needs_axis ? Key{"reference", KeyType::Vec3, "–", "any ⊥ axis", "direction ⊥ axis where a driver's angle is zero; not parallel to the axis"}
+                             : Key{"reference", KeyType::Map, "rad", "body1's frame", "rotation of the joint frame", {}, "", "rotation"});
+  if (kind.angle_driver || kind.displacement_driver)
+    keys.push_back({"driver", KeyType::Map, "rad, m", "none",
+                    std::string("prescribed relative motion: ") + (kind.angle_driver ? "`angle` (rad)" : "") +
+                        (kind.angle_driver && kind.displacement_driver ? ", " : "") +
+                        (kind.displacement_driver ? "`displacement` (m)" : "") + ", each a number or a time function"});
+  return type_schema("joints.3d." + kind.name,
+                     "`" + kind.name + "`: " + std::to_string(kind.num_equations) + " equations; " + kind.doc, keys);
 }
 
+const Schema& driver_schema() {
+  static const Schema s{"joints.3d.driver", {
+      {"angle", KeyType::Function, "rad", "none", "relative rotation about the axis from `reference` (revolute, cylindrical)"},
+      {"displacement", KeyType::Function, "m", "none", "relative translation along the axis (cylindrical, prismatic)"}}};
+  return s;
+}
 
-/// `pressure` on the shell elements of a surface group (ShellPressure per element) and `edge_load`
-/// (force and moment per length) on a curve group, as consistent nodal loads of its linear
-/// segments: each node carries half the reference length of each adjacent segment.
-void read_surface_load(Reader& rd, SceneBuilder& sb, const YAML::Node& f, const std::string& path, const std::string& name,
-                       const std::string& type, Model& model) {
-  if (type == "pressure") {
-    rd.keys(f, path, {"name", "type", "group", "value", "follower"});
-    const MeshGroup& g = sb.mesh_group(rd.need(f, "group", path), path + ".group", 2);
-    if (!g.shells) rd.fail(f["group"], path + ".group", "a pressure acts on shells: no `shells` block uses this surface group");
-    const TimeFunctionPtr p = rd.function(rd.need(f, "value", path), path + ".value");
-    const bool follower = f["follower"] ? rd.flag(f["follower"], path + ".follower") : true;
-    for (size_t e = 0; e < g.elements.size(); ++e) {
-      std::vector<Eigen::Vector3d> X;
-      for (int n : g.elements[e]) X.push_back(initial_pose(model, n).x);
-      model.add_element(std::make_unique<ShellPressure>(name + "[" + std::to_string(e) + "]", g.elements[e], X, p, follower));
-    }
-    return;
-  }
-  rd.keys(f, path, {"name", "type", "group", "force", "moment", "follower"});
-  const MeshGroup& g = sb.mesh_group(rd.need(f, "group", path), path + ".group", 1);
-  if (!f["force"] && !f["moment"]) rd.fail(f, path, "an edge_load needs force (N/m) or moment (N m/m), or both");
-  auto per_length = [&](const char* key, const char* unit) {
-    std::array<TimeFunctionPtr, 3> v;
-    const YAML::Node n = f[key];
-    if (!n) return v;
-    if (!n.IsSequence() || n.size() != 3)
-      rd.fail(n, path + "." + key, std::string("expected [x, y, z], each a number or a time function (") + unit + ")");
-    for (int k = 0; k < 3; ++k) v[static_cast<size_t>(k)] = rd.function(n[k], path + "." + key + "[" + std::to_string(k) + "]");
-    return v;
+/// Every spatial joint kind: one reader, the kind's row of spatial_joint_kinds() (joints/spatial_joints.hpp) says what it takes.
+void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
+  Reader& rd = it.rd;
+  SceneBuilder& sb = it.sb;
+  Model& model = it.model;
+  const YAML::Node& j = it.node;
+  const std::string& path = it.path;
+  const std::string& name = it.name;
+  const bool has_axis = kind.needs_axis;
+  // A marker (a named frame of a body) stands for the body, the location and the joint frame.
+  auto marker_of = [&](const char* key) -> const NamedMarker* {
+    if (!j[key]) return nullptr;
+    const std::string mn = rd.text(j[key], path + "." + key);
+    const auto found = sb.markers.find(mn);
+    if (found == sb.markers.end()) rd.fail(j[key], path + "." + key, "no marker named '" + mn + "' (markers are listed under a body's `markers`)");
+    return &found->second;
   };
-  const std::array<TimeFunctionPtr, 3> force = per_length("force", "N/m"), moment = per_length("moment", "N m/m");
-  const bool follower = f["follower"] ? rd.flag(f["follower"], path + ".follower") : false;
+  const NamedMarker* mk1 = marker_of("marker1");
+  const NamedMarker* mk2 = marker_of("marker2");
+  if (mk1 && j["body1"]) rd.fail(j["body1"], path + ".body1", "give either body1 or marker1");
+  if (mk2 && j["body2"]) rd.fail(j["body2"], path + ".body2", "give either body2 or marker2");
+  if (mk1 && j["location"]) rd.fail(j["location"], path + ".location", "marker1 fixes the location; remove one of them");
+  // `group`: one joint per node of a mesh group (a clamped or supported edge), named name[k],
+  // each at its node with that node as body1.
+  const MeshGroup* group = nullptr;
+  if (const YAML::Node g = j["group"]) {
+    for (const char* k : {"body1", "marker1", "location"})
+      if (j[k]) rd.fail(j[k], path + "." + k, "give either group (a joint at every node of a mesh group) or " + std::string(k));
+    group = &sb.mesh_group(g, path + ".group");
+  }
+  if (!mk1 && !j["body1"] && !group) rd.fail(j, path + ".body1", "missing (required): body1, marker1 or group");
+  if (j["group2"] && !group) rd.fail(j["group2"], path + ".group2", "group2 pairs the nodes of `group` with coincident ones: give group too");
+  if (j["group2"] && (j["body2"] || mk2))
+    rd.fail(j["group2"], path + ".group2", "give either group2 (the coincident node of another mesh group) or body2/marker2");
+  const int fixed_b2 = mk2 ? mk2->node : (j["body2"] ? spatial_node(sb, j, "body2", path, true) : -1);
+  // (body1, body2) of each joint: one joint, or one per node of `group` (with body2, or with the
+  // node of `group2` at the same place: a hinge between two meshed parts that cross or touch).
+  std::vector<std::pair<int, int>> pairs;
+  if (!group) {
+    pairs.emplace_back(mk1 ? mk1->node : spatial_node(sb, j, "body1", path, false), fixed_b2);
+  } else if (!j["group2"]) {
+    for (int n : group->nodes) pairs.emplace_back(n, fixed_b2);
+  } else {
+    const MeshGroup& other = sb.mesh_group(j["group2"], path + ".group2");
+    pairs = coincident_nodes(rd, *group, other, j["group2"], path + ".group2");
+  }
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const auto [b1, b2] = pairs[k];
+    const std::string jname = group ? name + "[" + std::to_string(k) + "]" : name;
+    if (group && k == 0)  // name[0], name[1], …: checked once per group, not once per joint
+      for (const auto& c : model.constraints())
+        if (c->name().rfind(name + "[", 0) == 0) rd.fail(j["name"], path + ".name", "a joint named '" + c->name() + "' exists already");
+    if (b1 == b2) rd.fail(j["body2"] ? j["body2"] : j, path + ".body2", "a joint needs two different bodies");
+    const Pose<double> p1 = initial_pose(model, b1);
+    const Eigen::Vector3d loc = mk1                ? Eigen::Vector3d(p1.x + p1.R * mk1->position)
+                                : j["location"] ? rd.vec3(j["location"], path + ".location")
+                                                : p1.x;
+    // Joint frame (world, t = 0): a3 along the axis; universal: a1 = axis (on body 1), a2 = axis2.
+    // Without an axis key, a marker's frame is the joint frame (its z axis is the joint axis).
+    Eigen::Matrix3d R = mk1 ? Eigen::Matrix3d(p1.R * mk1->rotation) : p1.R;
+    if (mk1 && has_axis && !j["axis"]) {
+      R = p1.R * mk1->rotation;
+    } else if (kind.needs_axis2) {
+      const Eigen::Vector3d a1 = rd.direction(rd.need(j, "axis", path), path + ".axis");
+      const Eigen::Vector3d a2 = rd.direction(rd.need(j, "axis2", path), path + ".axis2");
+      if (std::fabs(a1.dot(a2)) > 1e-9)
+        rd.fail(j["axis2"], path + ".axis2", "the two axes of a universal joint must be perpendicular");
+      R.col(0) = a1;
+      R.col(1) = a2;
+      R.col(2) = a1.cross(a2);
+    } else if (has_axis) {
+      const Eigen::Vector3d a3 = rd.direction(rd.need(j, "axis", path), path + ".axis");
+      // a1: the `reference` direction (where a driver's angle is zero), else any perpendicular.
+      Eigen::Vector3d ref = j["reference"] ? rd.direction(j["reference"], path + ".reference")
+                                           : (std::fabs(a3.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
+      ref -= a3.dot(ref) * a3;
+      if (ref.norm() < 1e-9) rd.fail(j["reference"], path + ".reference", "must not be parallel to the axis");
+      R.col(0) = ref.normalized();
+      R.col(2) = a3;
+      R.col(1) = a3.cross(R.col(0));
+    } else if (j["reference"]) {
+      R = read_orientation(rd, j["reference"], path + ".reference");
+    }
+    TimeFunctionPtr angle, displacement;
+    if (const YAML::Node d = j["driver"]) {
+      rd.keys(d, path + ".driver", driver_schema());
+      if (d["angle"]) {
+        if (!kind.angle_driver)
+          rd.fail(d["angle"], path + ".driver.angle", "a " + kind.name + " joint has no rotation to drive (use displacement)");
+        angle = rd.function(d["angle"], path + ".driver.angle");
+      }
+      if (d["displacement"]) {
+        if (!kind.displacement_driver)
+          rd.fail(d["displacement"], path + ".driver.displacement", "a " + kind.name + " joint has no translation to drive (use angle)");
+        displacement = rd.function(d["displacement"], path + ".driver.displacement");
+      }
+    }
+    if (mk2) {
+      const Pose<double> p2 = initial_pose(model, b2);
+      const Eigen::Vector3d at2 = p2.x + p2.R * mk2->position;
+      if ((at2 - loc).norm() > 1e-9 * std::max(1.0, loc.norm()))
+        rd.fail(j["marker2"], path + ".marker2",
+                "is not at the joint's location at t = 0 (distance " + std::to_string((at2 - loc).norm()) + " m)");
+    }
+    std::vector<int> nodes{b1};
+    if (b2 >= 0) nodes.push_back(b2);
+    const SpatialMarker A = marker_at(model, b1, 0, loc, R);
+    const SpatialMarker B = marker_at(model, b2, 1, loc, R);
+    try {
+      model.add_constraint(std::make_unique<SpatialJoint>(jname, nodes, kind, A, B, angle, displacement));
+    } catch (const std::invalid_argument& e) {
+      rd.fail(j, path, e.what());
+    }
+  }
+}
+
+/// `pressure` on the shell elements of a surface group (ShellPressure per element).
+void read_pressure(const Item& it) {
+  const MeshGroup& g = it.sb.mesh_group(it.keys.node("group"), it.at("group"), 2);
+  if (!g.shells) it.rd.fail(it.node["group"], it.at("group"), "a pressure acts on shells: no `shells` block uses this surface group");
+  const TimeFunctionPtr p = it.keys.function("value");
+  const bool follower = it.keys.flag("follower", true);
+  for (size_t e = 0; e < g.elements.size(); ++e) {
+    std::vector<Eigen::Vector3d> X;
+    for (int n : g.elements[e]) X.push_back(initial_pose(it.model, n).x);
+    it.model.add_element(std::make_unique<ShellPressure>(it.name + "[" + std::to_string(e) + "]", g.elements[e], X, p, follower));
+  }
+}
+
+/// [x, y, z] of time functions at `key` (absent: none).
+std::array<TimeFunctionPtr, 3> vector_function(const Item& it, const char* key, const char* unit) {
+  std::array<TimeFunctionPtr, 3> v;
+  const YAML::Node n = it.keys.node(key);
+  if (!n) return v;
+  if (!n.IsSequence() || n.size() != 3)
+    it.rd.fail(n, it.at(key), std::string("expected [x, y, z], each a number or a time function (") + unit + ")");
+  for (int k = 0; k < 3; ++k) v[static_cast<size_t>(k)] = it.rd.function(n[k], it.at(key) + "[" + std::to_string(k) + "]");
+  return v;
+}
+
+/// `edge_load` (force and moment per length) on a curve group, as consistent nodal loads of its
+/// linear segments: each node carries half the reference length of each adjacent segment.
+void read_edge_load(const Item& it) {
+  const MeshGroup& g = it.sb.mesh_group(it.keys.node("group"), it.at("group"), 1);
+  if (!it.keys.has("force") && !it.keys.has("moment")) it.rd.fail(it.node, it.path, "an edge_load needs force (N/m) or moment (N m/m), or both");
+  const std::array<TimeFunctionPtr, 3> force = vector_function(it, "force", "N/m"), moment = vector_function(it, "moment", "N m/m");
+  const bool follower = it.keys.flag("follower", false);
   std::map<int, double> length;  // node → length it carries
   for (const auto& seg : g.elements) {
-    const double l = (initial_pose(model, seg[1]).x - initial_pose(model, seg[0]).x).norm();
+    const double l = (initial_pose(it.model, seg[1]).x - initial_pose(it.model, seg[0]).x).norm();
     length[seg[0]] += 0.5 * l;
     length[seg[1]] += 0.5 * l;
   }
@@ -329,129 +341,147 @@ void read_surface_load(Reader& rd, SceneBuilder& sb, const YAML::Node& f, const 
         if (v[k]) out[k] = make_scaled(v[k], length[n]);
       return out;
     };
-    model.add_element(std::make_unique<SpatialLoad>(name + "[" + model.node(n).name + "]", n, Eigen::Vector3d::Zero(),
-                                                    scaled(force), scaled(moment), follower));
+    it.model.add_element(std::make_unique<SpatialLoad>(it.name + "[" + it.model.node(n).name + "]", n, Eigen::Vector3d::Zero(),
+                                                       scaled(force), scaled(moment), follower));
   }
 }
 
-void read_spatial_forces(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
-  if (!list) return;
-  if (!list.IsSequence()) rd.fail(list, "forces", "expected a list of loads");
-  std::set<std::string> names;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const YAML::Node f = list[i];
-    std::string path;
-    const std::string name = rd.item_name(f, "forces", i, "expected a map with name, type, ...", path);
-    if (!names.insert(name).second) rd.fail(f["name"], path + ".name", "a force named '" + name + "' exists already");
-    const std::string type = rd.text(rd.need(f, "type", path), path + ".type");
-    if (type == "pressure" || type == "edge_load") {
-      read_surface_load(rd, sb, f, path, name, type, model);
-      continue;
+/// `force` (at a body point) and `moment`: dead (world components) or follower (body frame).
+void read_point_load(const Item& it, bool moment) {
+  const int b = spatial_node(it.sb, it.node, "body", it.path, false);
+  const Eigen::Vector3d s = moment ? Eigen::Vector3d::Zero() : it.keys.vec3("point");
+  const std::array<TimeFunctionPtr, 3> value = vector_function(it, "value", moment ? "N m" : "N"), none;
+  const bool follower = it.keys.flag("follower", false);
+  it.model.add_element(std::make_unique<SpatialLoad>(it.name, b, s, moment ? none : value, moment ? value : none, follower));
+}
+
+void read_point_sensor_3d(const Item& it, Sensor& sn, Sensor::Kind kind) {
+  Reader& rd = it.rd;
+  const Section& k = it.keys;
+  sn.kind = kind;
+  if (k.has("marker")) {
+    if (k.has("body") || k.has("point")) rd.fail(k.node("marker"), it.at("marker"), "give either marker or body/point");
+    const std::string mn = k.text("marker");
+    const auto found = it.sb.markers.find(mn);
+    if (found == it.sb.markers.end()) rd.fail(k.node("marker"), it.at("marker"), "no marker named '" + mn + "'");
+    sn.node = found->second.node;
+    sn.local = found->second.position;
+  } else {
+    sn.node = spatial_node(it.sb, it.node, "body", it.path, false);
+    sn.local = k.vec3("point");
+  }
+  sn.component = k.choice("component");
+  const Pose<double> p0 = initial_pose(it.model, sn.node);
+  sn.initial = p0.x + p0.R * sn.local;
+  if (k.has("relative_to")) {
+    sn.frame_node = spatial_node(it.sb, it.node, "relative_to", it.path, false);
+    if (sn.kind == Sensor::Kind::PointDisplacement) {
+      // Displacement seen in the moving frame: position in that frame minus its initial value.
+      const Pose<double> f0 = initial_pose(it.model, sn.frame_node);
+      sn.initial = f0.R.transpose() * (sn.initial - f0.x);
     }
-    if (type != "force" && type != "moment")
-      rd.fail(f["type"], path + ".type", "unknown load type '" + type + "' for dimension 3 (expected force, moment, pressure, edge_load)");
-    rd.keys(f, path, type == "force" ? std::set<std::string>{"name", "type", "body", "point", "value", "follower"}
-                                     : std::set<std::string>{"name", "type", "body", "value", "follower"});
-    const int b = spatial_node(sb, f, "body", path, false);
-    const Eigen::Vector3d s = rd.vec3(f, "point", path, Eigen::Vector3d::Zero());
-    const YAML::Node v = rd.need(f, "value", path);
-    const char* unit = type == "force" ? "N" : "N m";
-    if (!v.IsSequence() || v.size() != 3)
-      rd.fail(v, path + ".value", std::string("expected [x, y, z], each a number or a time function (") + unit + ")");
-    std::array<TimeFunctionPtr, 3> value, none;
-    for (int k = 0; k < 3; ++k) value[static_cast<size_t>(k)] = rd.function(v[k], path + ".value[" + std::to_string(k) + "]");
-    const bool follower = f["follower"] ? rd.flag(f["follower"], path + ".follower") : false;
-    if (type == "force")
-      model.add_element(std::make_unique<SpatialLoad>(name, b, s, value, none, follower));
-    else
-      model.add_element(std::make_unique<SpatialLoad>(name, b, Eigen::Vector3d::Zero(), none, value, follower));
   }
 }
 
-void read_spatial_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, Model& model) {
-  if (!list) return;
-  if (!list.IsSequence()) rd.fail(list, "sensors", "expected a list of sensors");
-  std::set<std::string> names;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const YAML::Node s = list[i];
-    std::string path;
-    Sensor sn;
-    sn.name = rd.sensor_name(s, i, names, path);
-    const std::string type = rd.text(rd.need(s, "type", path), path + ".type");
-    auto component = [&](std::initializer_list<const char*> allowed) { return rd.choice(s, "component", path, allowed); };
-    if (type == "point_position" || type == "point_displacement" || type == "point_velocity" ||
-        type == "point_acceleration") {
-      rd.keys(s, path, {"name", "type", "body", "point", "component", "relative_to", "marker"});
-      sn.kind = type == "point_position"       ? Sensor::Kind::PointPosition
-                : type == "point_velocity"     ? Sensor::Kind::PointVelocity
-                : type == "point_acceleration" ? Sensor::Kind::PointAcceleration
-                                               : Sensor::Kind::PointDisplacement;
-      if (s["marker"]) {
-        if (s["body"] || s["point"]) rd.fail(s["marker"], path + ".marker", "give either marker or body/point");
-        const std::string mn = rd.text(s["marker"], path + ".marker");
-        const auto it = sb.markers.find(mn);
-        if (it == sb.markers.end()) rd.fail(s["marker"], path + ".marker", "no marker named '" + mn + "'");
-        sn.node = it->second.node;
-        sn.local = it->second.position;
-      } else {
-        sn.node = spatial_node(sb, s, "body", path, false);
-        sn.local = rd.vec3(s, "point", path, Eigen::Vector3d::Zero());
-      }
-      sn.component = component({"x", "y", "z"});
-      const Pose<double> p0 = initial_pose(model, sn.node);
-      sn.initial = p0.x + p0.R * sn.local;
-      if (s["relative_to"]) {
-        sn.frame_node = spatial_node(sb, s, "relative_to", path, false);
-        if (sn.kind == Sensor::Kind::PointDisplacement) {
-          // Displacement seen in the moving frame: position in that frame minus its initial value.
-          const Pose<double> f0 = initial_pose(model, sn.frame_node);
-          sn.initial = f0.R.transpose() * (sn.initial - f0.x);
-        }
-      }
-    } else if (type == "body_rotation") {
-      rd.keys(s, path, {"name", "type", "body", "component"});
-      sn.kind = Sensor::Kind::BodyRotation;
-      sn.node = spatial_node(sb, s, "body", path, false);
-      sn.component = component({"x", "y", "z"});
-    } else if (type == "joint_reaction") {
-      rd.keys(s, path, {"name", "type", "joint", "component"});
-      sn.kind = Sensor::Kind::JointReaction;
-      const std::string jn = rd.text(rd.need(s, "joint", path), path + ".joint");
-      sn.constraint = model.find_constraint(jn);
-      if (sn.constraint < 0) rd.fail(s["joint"], path + ".joint", "no joint named '" + jn + "'");
-      sn.component = component({"fx", "fy", "fz", "mx", "my", "mz"});
-    } else if (type == "beam_output" || type == "shell_output") {
-      // A result field of one element of a beam or shell block (elements name[k], mesh order).
-      const bool beam = type == "beam_output";
+void read_body_rotation(const Item& it, Sensor& sn) {
+  sn.kind = Sensor::Kind::BodyRotation;
+  sn.node = spatial_node(it.sb, it.node, "body", it.path, false);
+  sn.component = it.keys.choice("component");
+}
+
+void read_joint_reaction_3d(const Item& it, Sensor& sn) {
+  sn.kind = Sensor::Kind::JointReaction;
+  sn.constraint = sensor_joint(it);
+  sn.component = it.keys.choice("component");
+}
+
+/// A result field of one element of a beam or shell block (elements name[k], mesh order).
+void read_element_output(const Item& it, Sensor& sn, bool beam) {
+  Reader& rd = it.rd;
+  const char* block = beam ? "beam" : "shell";
+  sn.kind = Sensor::Kind::ElementOutput;
+  const std::string bn = it.keys.text(block);
+  const int idx = it.keys.integer("element");
+  const std::string ename = bn + "[" + std::to_string(idx) + "]";
+  const auto& elements = it.model.elements();
+  for (size_t e = 0; e < elements.size(); ++e)
+    if (elements[e]->name() == ename && !elements[e]->output_names().empty()) sn.element = static_cast<int>(e);
+  if (sn.element < 0)
+    rd.fail(it.node["element"], it.at("element"), std::string(block) + " '" + bn + "' has no element " + std::to_string(idx) +
+                                                      (beam ? " (elements are numbered from 0 along the mesh)"
+                                                            : " (elements are numbered from 0 in the mesh group's order)"));
+  sn.component = rd.choice(it.keys.node("component"), it.at("component"), elements[static_cast<size_t>(sn.element)]->output_names());
+}
+
+}  // namespace
+
+const SceneTypes& spatial_types() {
+  static const SceneTypes t = [] {
+    SceneTypes t{{"body type", " for dimension 3"}, {"joint type", ""}, {"load type", " for dimension 3"},
+                 {"sensor type", " for dimension 3"}, "; beams come from `beams`", {&marker_schema(), &driver_schema()}};
+    t.bodies.add("rigid_body", type_schema("bodies.3d.rigid_body", "`rigid_body`: a frame on R³×SO(3)", {
+        {"mass", KeyType::Number, "kg", kRequired, "positive", Range::positive(), "mass (kg); a zero mass makes the mass matrix singular"},
+        {"inertia", KeyType::List, "kg·m²", kRequired, "about the centre of mass in the body frame; symmetric positive definite with I1 + I2 ≥ I3",
+         {}, "", "[Ixx, Iyy, Izz] or 3×3 list of rows"},
+        {"position", KeyType::Vec3, "m", kRequired, "centre of mass at t = 0"},
+        {"orientation", KeyType::Map, "rad", "identity", "body frame at t = 0: a rotation vector [rx, ry, rz] or {axis, angle}", {}, "", "rotation"},
+        {"velocity", KeyType::Vec3, "m/s", "[0, 0, 0]", "velocity of the centre of mass at t = 0"},
+        {"angular_velocity", KeyType::Vec3, "rad/s", "[0, 0, 0]", "world components at t = 0"},
+        {"markers", KeyType::List, "m, rad", "none", "frames fixed to the body, `{name, position, orientation}` in the body frame"}}),
+                  read_rigid_body_3d);
+    for (const SpatialJointKind& kind : spatial_joint_kinds())  // one registration per row of the joints' table
+      t.joints.add(kind.name, spatial_joint_schema(kind), [&kind](const Item& it) { read_spatial_joint(it, kind); });
+
+    const Key follower_off{"follower", KeyType::Flag, "–", "off", "off: world components (dead load); on: body-frame components (follower)"};
+    t.loads.add("force", type_schema("forces.3d.force", "`force` at a body point", {
+        {"body", KeyType::Text, "–", kRequired, "a body or beam/shell node; not `ground`"},
+        {"point", KeyType::Vec3, "m", "[0, 0, 0]", "point of application, body frame"},
+        {"value", KeyType::List, "N", kRequired, "[fx, fy, fz], each a number or a time function", {}, "", "[x, y, z] of time functions"},
+        follower_off}), [](const Item& it) { read_point_load(it, false); });
+    t.loads.add("moment", type_schema("forces.3d.moment", "`moment` on a body", {
+        {"body", KeyType::Text, "–", kRequired, "a body or beam/shell node; not `ground`"},
+        {"value", KeyType::List, "N·m", kRequired, "[mx, my, mz], each a number or a time function", {}, "", "[x, y, z] of time functions"},
+        follower_off}), [](const Item& it) { read_point_load(it, true); });
+    t.loads.add("pressure", type_schema("forces.3d.pressure", "`pressure` on the shells of a surface group", {
+        {"group", KeyType::Text, "–", kRequired, "a surface group used by `shells`"},
+        {"value", KeyType::Function, "Pa", kRequired, "positive against the element normal"},
+        {"follower", KeyType::Flag, "–", "on", "on: along the current normal, per current area; off: fixed direction"}}), read_pressure);
+    t.loads.add("edge_load", type_schema("forces.3d.edge_load", "`edge_load`: a load per length along a curve group", {
+        {"group", KeyType::Text, "–", kRequired, "a curve group whose nodes are on beams or shells"},
+        {"force", KeyType::List, "N/m", "none", "[fx, fy, fz] per length, each a number or a time function", {}, "", "[x, y, z] of time functions"},
+        {"moment", KeyType::List, "N·m/m", "none", "[mx, my, mz] per length (force or moment, or both)", {}, "", "[x, y, z] of time functions"},
+        follower_off}), read_edge_load);
+
+    const Key xyz{"component", KeyType::Choice, "–", kRequired, "component", {}, "", "", {"x", "y", "z"}};
+    const std::pair<const char*, Sensor::Kind> points[] = {
+        {"point_position", Sensor::Kind::PointPosition}, {"point_displacement", Sensor::Kind::PointDisplacement},
+        {"point_velocity", Sensor::Kind::PointVelocity}, {"point_acceleration", Sensor::Kind::PointAcceleration}};
+    for (const auto& [name, kind] : points)  // one schema, four quantities (m, m, m/s, m/s²)
+      t.sensors.add(name, type_schema(std::string("sensors.3d.") + name, std::string("`") + name + "` of a body point: world components, or in the frame of `relative_to`", {
+          {"body", KeyType::Text, "–", kRequired + std::string(" (unless `marker`)"), "a body or beam/shell node; not `ground`"},
+          {"point", KeyType::Vec3, "m", "[0, 0, 0]", "point of the body, body frame"},
+          {"marker", KeyType::Text, "–", "–", "a marker instead of body and point"},
+          xyz,
+          {"relative_to", KeyType::Text, "–", "none", "a body whose frame the point is seen in"}}),
+          [kind = kind](const Item& it, Sensor& sn) { read_point_sensor_3d(it, sn, kind); });
+    t.sensors.add("body_rotation", type_schema("sensors.3d.body_rotation", "`body_rotation`: component of the rotation vector log(R) (rad)", {
+        {"body", KeyType::Text, "–", kRequired, "a body or beam/shell node"}, xyz}), read_body_rotation);
+    t.sensors.add("joint_reaction", type_schema("sensors.3d.joint_reaction", "`joint_reaction`: force / moment on body1 in the joint frame (N, N·m)", {
+        {"joint", KeyType::Text, "–", kRequired, "a joint of `joints`"},
+        {"component", KeyType::Choice, "–", kRequired, "component", {}, "", "", {"fx", "fy", "fz", "mx", "my", "mz"}}}), read_joint_reaction_3d);
+    for (const bool beam : {true, false}) {
       const char* block = beam ? "beam" : "shell";
-      rd.keys(s, path, {"name", "type", block, "element", "component"});
-      sn.kind = Sensor::Kind::ElementOutput;
-      const std::string bn = rd.text(rd.need(s, block, path), path + "." + block);
-      const int idx = rd.integer(rd.need(s, "element", path), path + ".element", 0);
-      const std::string ename = bn + "[" + std::to_string(idx) + "]";
-      for (size_t e = 0; e < model.elements().size(); ++e)
-        if (model.elements()[e]->name() == ename && !model.elements()[e]->output_names().empty()) sn.element = static_cast<int>(e);
-      if (sn.element < 0)
-        rd.fail(s["element"], path + ".element", std::string(block) + " '" + bn + "' has no element " + std::to_string(idx) +
-                                                     (beam ? " (elements are numbered from 0 along the mesh)"
-                                                           : " (elements are numbered from 0 in the mesh group's order)"));
-      const auto outs = model.elements()[static_cast<size_t>(sn.element)]->output_names();
-      const std::string c = rd.text(rd.need(s, "component", path), path + ".component");
-      sn.component = -1;
-      std::string l;
-      for (size_t k = 0; k < outs.size(); ++k) {
-        if (outs[k] == c) sn.component = static_cast<int>(k);
-        l += (k ? ", " : "") + outs[k];
-      }
-      if (sn.component < 0) rd.fail(s["component"], path + ".component", "expected one of " + l);
-    } else {
-      rd.fail(s["type"], path + ".type",
-              "unknown sensor type '" + type +
-                  "' for dimension 3 (expected point_position, point_displacement, point_velocity, point_acceleration, "
-                  "body_rotation, joint_reaction, beam_output, shell_output)");
+      t.sensors.add(std::string(block) + "_output", type_schema(std::string("sensors.3d.") + block + "_output",
+                    std::string("`") + block + "_output`: a result of one element of a " + block + " block", {
+          {block, KeyType::Text, "–", kRequired, std::string("the name of a `") + block + "s` block"},
+          {"element", KeyType::Integer, "–", kRequired, beam ? "index from 0 along the mesh" : "index from 0 in the group's element order", Range::at_least(0)},
+          {"component", KeyType::Text, "–", kRequired, beam ? "`N V2 V3 T M2 M3` (N, N·m) or `axial_strain shear_strain_2 shear_strain_3 twist curvature_2 curvature_3` (1, 1/m)"
+                                                            : "a shell result: `n11 n22 n12` (N/m), `m11 m22 m12` (N·m/m), `q1 q2` (N/m), stresses (Pa)"}}),
+          [beam](const Item& it, Sensor& sn) { read_element_output(it, sn, beam); });
     }
-    model.add_sensor(sn);
-  }
+    return t;
+  }();
+  return t;
 }
 
 }  // namespace alphaflex::scene_detail

@@ -3,11 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <set>
 #include <string>
 
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/io/scene.hpp"
+#include "alphaflex/io/schema.hpp"
+#include "alphaflex/study/study_spec.hpp"
 #include "test_support.hpp"
 
 namespace alphaflex {
@@ -20,15 +24,11 @@ joints:
   - {name: pin, type: revolute, body1: bar, point1: [-0.5, 0], body2: ground, point2: [0, 0]}
 )";
 
-/// The InputError message of reading (and starting, with stop_after_start) `yaml`.
-std::string error_of(const std::string& yaml) {
+/// The InputError message of `read` (a failure if it throws anything else or nothing).
+template <class Read>
+std::string input_error(Read read) {
   try {
-    Scene sc = read_scene_text(yaml, "scene.yaml");
-    RunOptions o;
-    o.write_results = false;
-    o.verbose = false;
-    o.stop_after_start = true;
-    run_simulation(sc, o, MPI_COMM_SELF);
+    read();
   } catch (const InputError& e) {
     return e.what();
   } catch (const std::exception& e) {
@@ -37,6 +37,18 @@ std::string error_of(const std::string& yaml) {
   }
   ADD_FAILURE() << "accepted";
   return "";
+}
+
+/// The InputError message of reading (and starting, with stop_after_start) `yaml`.
+std::string error_of(const std::string& yaml) {
+  return input_error([&] {
+    Scene sc = read_scene_text(yaml, "scene.yaml");
+    RunOptions o;
+    o.write_results = false;
+    o.verbose = false;
+    o.stop_after_start = true;
+    run_simulation(sc, o, MPI_COMM_SELF);
+  });
 }
 
 // YAML allows a map as a key (`? {a: b}`); yaml-cpp's conversion to a string then threw a
@@ -113,6 +125,71 @@ TEST(SceneErrors, StopAfterStartTakesNoStepAndWritesNothing) {
   EXPECT_EQ(observed, 0);
   EXPECT_EQ(s.unknowns, 5);  // x, y, θ and the pin's two multipliers
   EXPECT_FALSE(fs::exists(out));
+}
+
+
+// The study reader is the scene's reader (io/schema.hpp). Its former copy converted keys with
+// kv.first.as<std::string>(): a map used as a key threw YAML::BadConversion, an internal error
+// (exit 4) instead of a message naming the file and the key (exit 1).
+TEST(StudyErrors, MapAsKeyIsNamed) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "alphaflex_study_map_key";
+  fs::create_directories(dir);
+  const fs::path scene = dir / "pendulum.yaml", study = dir / "study.yaml";
+  std::ofstream(scene) << kPendulum;
+  auto error = [&](const std::string& text, const std::vector<std::string>& set = {}) {
+    std::ofstream(study) << text;
+    return input_error([&] { study::read_study(scene.string(), study.string(), set); });
+  };
+  const std::string f = study.string();
+  EXPECT_EQ(error("study:\n  ? {a: b}\n  : 1\n  h: [1e-3]\n"),
+            f + ":2: study: expected key names, found a list or a map used as a key");
+  EXPECT_EQ(error("study:\n  h: [1e-3]\n  mode: oscillation\n  settings:\n    - label: a\n      newton:\n        ? [x]\n        : 1\n"),
+            f + ":7: study.settings[a].newton: expected key names, found a list or a map used as a key");
+  // A 5000-character value is refused with its length, not quoted (the fuzz test's second study finding).
+  EXPECT_EQ(error("study:\n  h: [1e-3]\n  mode: " + std::string(5000, 'x') + "\n"),
+            f + ":3: study.mode: expected a string of at most 4096 characters, got 5000");
+  // --study-set goes through the scene's override function: errors name the option.
+  EXPECT_EQ(error("study:\n  h: [1e-3]\n  mode: oscillation\n", {"t_end=-1"}),
+            f + ": --study-set t_end=-1: study.t_end: expected a positive final time (s), got -1");
+  EXPECT_EQ(error("study:\n  h: [1e-3]\n  t_end: 1\n", {"t_end.x=1"}),
+            f + ": --study-set t_end.x=1: 't_end' is a value, not a map: it has no key 'x'");
+  fs::remove_all(dir);
+}
+
+// Type names come from the registry: the message lists every registered type, in order.
+TEST(SceneErrors, UnknownTypeListsTheRegisteredTypes) {
+  std::string yaml = kPendulum;
+  yaml.replace(yaml.find("type: revolute"), 14, "type: hinge");
+  EXPECT_EQ(error_of(yaml), "scene.yaml:5: joints[pin].type: unknown joint type 'hinge' "
+                            "(expected revolute, fixed_point, fixed, point_on_line, prismatic)");
+  EXPECT_EQ(error_of("dimension: 3\nbodies:\n  - {name: b, type: particle}\n"),
+            "scene.yaml:3: bodies[b].type: unknown body type 'particle' for dimension 3 (expected rigid_body; beams come from `beams`)");
+}
+
+// A schema's range gives the message; a choice lists the schema's names and quotes the value.
+TEST(SceneErrors, RangeAndChoiceMessagesComeFromTheSchema) {
+  EXPECT_EQ(error_of("solver: {h: 1.0e-3, t_end: 0.01, newton: {max_contraction: 1}}\n" + kPendulum.substr(kPendulum.find('\n') + 1)),
+            "scene.yaml:1: solver.newton.max_contraction: expected contraction rate in (0, 1), got 1");
+  EXPECT_EQ(error_of("solver: {h: 1.0e-3, t_end: 0.01, scheme: rk4}\n" + kPendulum.substr(kPendulum.find('\n') + 1)),
+            "scene.yaml:1: solver.scheme: unknown scheme 'rk4' (expected one of generalized-alpha, hht, newmark)");
+}
+
+// Every key a reader reads is in its schema with the type it is read with: the docs tables are
+// what the reader does (a key read but not declared is a std::logic_error, not an input error).
+TEST(SceneSchemas, EverySchemaHasDocumentedKeysWithUnits) {
+  std::vector<const input::Schema*> all = input::scene_schemas();
+  for (const auto* s : study::schemas()) all.push_back(s);
+  std::set<std::string> names;
+  for (const auto* s : all) {
+    EXPECT_TRUE(names.insert(s->name).second) << "two schemas are named " << s->name;
+    for (const auto& k : s->keys) {
+      EXPECT_FALSE(k.doc.empty()) << s->name << "." << k.name;
+      EXPECT_FALSE(k.unit.empty()) << s->name << "." << k.name;
+      if (k.type == input::KeyType::Choice) EXPECT_FALSE(k.choices.empty()) << s->name << "." << k.name;
+    }
+  }
+  EXPECT_GT(all.size(), 50u);
 }
 
 }  // namespace

@@ -6,7 +6,14 @@
 #include <string>
 #include <vector>
 
+namespace alphaflex::input {
+struct Schema;
+}
+
 namespace alphaflex::study {
+
+/// The schemas of the study map (for `alphaflex keys` and docs/input.md).
+std::vector<const input::Schema*> schemas();
 
 enum class StudyMode {
   Convergence,  ///< settings × step sizes: work–precision, convergence and cost charts
