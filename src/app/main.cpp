@@ -7,7 +7,7 @@
 //                   [PETSc/SLEPc options]
 //
 // Exit codes: 0 success, 1 bad input, 2 bad command line, 3 solver failure, 4 internal error,
-// 5 stopped by a signal after writing a checkpoint.
+// 5 stopped by a signal after writing a checkpoint, 6 results or checkpoint not written.
 #include <slepcsys.h>
 
 #include <cmath>
@@ -52,7 +52,8 @@ const char* kUsage =
     "  -eps_*, -pep_*, -st_* (SLEPc); docs/modes.md\n"
     "\n"
     "Scene keys: docs/input.md; running long jobs: docs/running.md. Exit codes: 0 ok, 1 bad input,\n"
-    "2 bad command line, 3 solver failure, 4 a bug of alphaflex, 5 stopped by a signal (checkpoint written).\n";
+    "2 bad command line, 3 solver failure, 4 a bug of alphaflex, 5 stopped by a signal (checkpoint written),\n"
+    "6 results or checkpoint not written (disk full, no permission).\n";
 
 /// Resident memory of this process now (MB), from /proc/self/statm; 0 where it cannot be read.
 double resident_mb() {
@@ -253,6 +254,9 @@ int main(int argc, char** argv) {
     message = e.what();
   } catch (const alphaflex::Interrupted& e) {
     code = 5;
+    message = e.what();
+  } catch (const alphaflex::OutputError& e) {
+    code = 6;
     message = e.what();
   } catch (const std::exception& e) {
     code = 4;
