@@ -246,21 +246,10 @@ int main(int argc, char** argv) {
     } else {
       run_command(cl, rank, size, exit_comm, exit_timeout, message);
     }
-  } catch (const alphaflex::InputError& e) {
-    code = 1;
-    message = e.what();
-  } catch (const alphaflex::SolverError& e) {
-    code = 3;
-    message = e.what();
-  } catch (const alphaflex::Interrupted& e) {
-    code = 5;
-    message = e.what();
-  } catch (const alphaflex::OutputError& e) {
-    code = 6;
-    message = e.what();
   } catch (const std::exception& e) {
-    code = 4;
-    message = std::string("internal error on rank ") + std::to_string(rank) + ": " + e.what();
+    // The code of the error's type (exit_agreement.hpp: one table for main and run_simulation).
+    code = alphaflex::exit_code_of(e);
+    message = code == 4 ? std::string("internal error on rank ") + std::to_string(rank) + ": " + e.what() : e.what();
   }
   // Every rank ends alike: an error the ranks agreed on ends them all cleanly with one message; an
   // error only this rank saw ends the job (the others wait in a collective call it has left).

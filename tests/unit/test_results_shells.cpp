@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -223,40 +224,32 @@ TEST(ResultsShells, MixedShellMeshIsWrittenWithConnectivityGeometryAndResultants
 
 namespace {
 
-/// A test element of a structure the writer does not know ("membrane"): a triangle drawn with its
-/// corners in the order (0, 2, 1), a field of 3 components (the mean of its nodes' positions) and
-/// a scalar (t); its "energy" is the sum of its nodes' x. It has no forces: only its capabilities
-/// are under test.
-class ToyMembrane final : public Element {
- public:
-  ToyMembrane(std::string name, std::vector<int> nodes) : Element(std::move(name), std::move(nodes)) {}
-  const char* type() const override { return "toy_membrane"; }
-  void evaluate(const LocalState&, LocalResidual&, bool) const override {}
-  const char* structure() const override { return "membrane"; }
-  OutputCell output_cell() const override { return {CellShape::triangle, {0, 2, 1}}; }
-  std::vector<CellField> cell_fields() const override { return {{"centre", 3}, {"t", 1}}; }
-  void output(const LocalState& s, Eigen::VectorXd& v) const override {
-    v.resize(4);
-    v.head<3>() = (s.q.segment<3>(0) + s.q.segment<3>(7) + s.q.segment<3>(14)) / 3.0;
-    v[3] = s.t;
-  }
-  double elastic_energy(const Eigen::VectorXd& q) const override { return q[0] + q[7] + q[14]; }
-  std::unique_ptr<Element> clone() const override { return std::make_unique<ToyMembrane>(*this); }
+/// What a test element of a structure the writer does not know says of itself: its structure,
+/// its cell, its fields, their values and its energy. It has no forces: only its capabilities are
+/// under test.
+struct ToyKind {
+  const char* structure;
+  OutputCell cell;
+  std::vector<CellField> fields;
+  std::function<Eigen::VectorXd(const LocalState&)> values;
+  std::function<double(const Eigen::VectorXd&)> energy;
 };
 
-/// A line element of another unknown structure ("cable"), drawn from its second node to its first,
-/// one scalar field (tension = x_0 − x_1), energy ½ (x_1 − x_0)².
-class ToyCable final : public Element {
+class ToyElement final : public Element {
  public:
-  ToyCable(std::string name, std::vector<int> nodes) : Element(std::move(name), std::move(nodes)) {}
-  const char* type() const override { return "toy_cable"; }
+  ToyElement(std::string name, std::vector<int> nodes, const ToyKind& kind)
+      : Element(std::move(name), std::move(nodes)), kind_(&kind) {}
+  const char* type() const override { return kind_->structure; }
   void evaluate(const LocalState&, LocalResidual&, bool) const override {}
-  const char* structure() const override { return "cable"; }
-  OutputCell output_cell() const override { return {CellShape::line, {1, 0}}; }
-  std::vector<CellField> cell_fields() const override { return {{"tension"}}; }
-  void output(const LocalState& s, Eigen::VectorXd& v) const override { v = Eigen::VectorXd::Constant(1, s.q[0] - s.q[7]); }
-  double elastic_energy(const Eigen::VectorXd& q) const override { return 0.5 * (q[7] - q[0]) * (q[7] - q[0]); }
-  std::unique_ptr<Element> clone() const override { return std::make_unique<ToyCable>(*this); }
+  const char* structure() const override { return kind_->structure; }
+  OutputCell output_cell() const override { return kind_->cell; }
+  std::vector<CellField> cell_fields() const override { return kind_->fields; }
+  void output(const LocalState& s, Eigen::VectorXd& v) const override { v = kind_->values(s); }
+  double elastic_energy(const Eigen::VectorXd& q) const override { return kind_->energy(q); }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<ToyElement>(*this); }
+
+ private:
+  const ToyKind* kind_;
 };
 
 }  // namespace
@@ -266,9 +259,23 @@ TEST(ResultsCapabilities, UnknownElementTypesAreDrawnAndMeasuredFromTheirCapabil
   model.name = "toys";
   const std::vector<Eigen::Vector3d> X = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 0, 0}};
   for (size_t i = 0; i < X.size(); ++i) model.add_node(frame_node("n" + std::to_string(i), X[i]));
-  model.add_element(std::make_unique<ToyMembrane>("m[0]", std::vector<int>{0, 1, 2}));
-  model.add_element(std::make_unique<ToyMembrane>("m[1]", std::vector<int>{1, 3, 2}));
-  model.add_element(std::make_unique<ToyCable>("c[0]", std::vector<int>{1, 4}));
+  // "membrane": triangles drawn with their corners in the order (0, 2, 1), a field of 3
+  // components (the mean of the nodes' positions) and a scalar (t); energy: the sum of the x.
+  const ToyKind membrane{"membrane", {CellShape::triangle, {0, 2, 1}}, {{"centre", 3}, {"t", 1}},
+                         [](const LocalState& s) {
+                           Eigen::VectorXd v(4);
+                           v.head<3>() = (s.q.segment<3>(0) + s.q.segment<3>(7) + s.q.segment<3>(14)) / 3.0;
+                           v[3] = s.t;
+                           return v;
+                         },
+                         [](const Eigen::VectorXd& q) { return q[0] + q[7] + q[14]; }};
+  // "cable": lines drawn from the second node to the first, tension x_0 − x_1, energy ½ (x_1 − x_0)².
+  const ToyKind cable{"cable", {CellShape::line, {1, 0}}, {{"tension"}},
+                      [](const LocalState& s) { return Eigen::VectorXd::Constant(1, s.q[0] - s.q[7]); },
+                      [](const Eigen::VectorXd& q) { return 0.5 * (q[7] - q[0]) * (q[7] - q[0]); }};
+  model.add_element(std::make_unique<ToyElement>("m[0]", std::vector<int>{0, 1, 2}, membrane));
+  model.add_element(std::make_unique<ToyElement>("m[1]", std::vector<int>{1, 3, 2}, membrane));
+  model.add_element(std::make_unique<ToyElement>("c[0]", std::vector<int>{1, 4}, cable));
   MechanicalState s = model.initial_state();
   s.t = 0.25;
   for (size_t i = 0; i < X.size(); ++i) s.q[model.nodes()[i].first_conf] += 0.1 * static_cast<double>(i);
