@@ -35,7 +35,7 @@ std::vector<size_t> active_parts(const ModalResult& r) {
 
 void write_csv(const std::string& path, const ModalResult& r) {
   std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot write the modes table");
+  if (!out) throw OutputError(path + ": cannot write the modes table");
   const std::vector<size_t> parts = active_parts(r);
   out << "mode,kind,frequency_hz,natural_frequency_hz,damping_ratio,eigenvalue_re,eigenvalue_im,modal_mass,"
          "dominant_part,whirl";
@@ -51,7 +51,7 @@ void write_csv(const std::string& path, const ModalResult& r) {
     for (size_t p : parts) out << "," << m.strain_share[p];
     out << "\n";
   }
-  if (!out) throw InputError(path + ": write failed");
+  if (!out) throw OutputError(path + ": write failed");
 }
 
 ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& opt, MPI_Comm comm) {
@@ -140,13 +140,13 @@ ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& o
     if (rank == 0) {
       try {
         write_csv(sum.csv, sum.result);
-      } catch (const InputError& e) {
+      } catch (const OutputError& e) {
         ok = 0;
         err = e.what();
       }
     }
     MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
-    if (!ok) throw InputError(broadcast_text(err, comm));
+    if (!ok) throw OutputError(broadcast_text(err, comm));
   }
   sum.wall = MPI_Wtime() - wall0;
   return sum;
