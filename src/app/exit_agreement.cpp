@@ -33,6 +33,7 @@ int exit_code_of(const std::exception& e) {
   if (dynamic_cast<const InputError*>(&e)) return 1;
   if (dynamic_cast<const SolverError*>(&e)) return 3;
   if (dynamic_cast<const Interrupted*>(&e)) return 5;
+  if (dynamic_cast<const OutputError*>(&e)) return 6;
   return 4;
 }
 

@@ -8,7 +8,7 @@
 //                   [PETSc/SLEPc options]
 //
 // Exit codes: 0 success, 1 bad input, 2 bad command line, 3 solver failure, 4 internal error,
-// 5 stopped by a signal after writing a checkpoint.
+// 5 stopped by a signal after writing a checkpoint, 6 results or checkpoint not written.
 #include <slepcsys.h>
 
 #include <cmath>
@@ -60,7 +60,8 @@ const char* kUsage =
     "  -eps_*, -pep_*, -st_* (SLEPc); docs/modes.md\n"
     "\n"
     "Scene keys: docs/input.md; running long jobs: docs/running.md. Exit codes: 0 ok, 1 bad input,\n"
-    "2 bad command line, 3 solver failure, 4 a bug of alphaflex, 5 stopped by a signal (checkpoint written).\n";
+    "2 bad command line, 3 solver failure, 4 a bug of alphaflex, 5 stopped by a signal (checkpoint written),\n"
+    "6 results or checkpoint not written (disk full, no permission).\n";
 
 /// Resident memory of this process now (MB), from /proc/self/statm; 0 where it cannot be read.
 double resident_mb() {
@@ -301,18 +302,10 @@ int main(int argc, char** argv) {
     } else {
       run_command(cl, rank, size, exit_comm, exit_timeout, message);
     }
-  } catch (const alphaflex::InputError& e) {
-    code = 1;
-    message = e.what();
-  } catch (const alphaflex::SolverError& e) {
-    code = 3;
-    message = e.what();
-  } catch (const alphaflex::Interrupted& e) {
-    code = 5;
-    message = e.what();
   } catch (const std::exception& e) {
-    code = 4;
-    message = std::string("internal error on rank ") + std::to_string(rank) + ": " + e.what();
+    // The code of the error's type (exit_agreement.hpp: one table for main and run_simulation).
+    code = alphaflex::exit_code_of(e);
+    message = code == 4 ? std::string("internal error on rank ") + std::to_string(rank) + ": " + e.what() : e.what();
   }
   // Every rank ends alike: an error the ranks agreed on ends them all cleanly with one message; an
   // error only this rank saw ends the job (the others wait in a collective call it has left).

@@ -37,7 +37,7 @@ std::vector<size_t> active_parts(const ModalResult& r) {
 
 void write_csv(const std::string& path, const ModalResult& r) {
   std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot write the modes table");
+  if (!out) throw OutputError(path + ": cannot write the modes table");
   const std::vector<size_t> parts = active_parts(r);
   out << "mode,kind,frequency_hz,natural_frequency_hz,damping_ratio,eigenvalue_re,eigenvalue_im,modal_mass,"
          "dominant_part,whirl";
@@ -53,7 +53,7 @@ void write_csv(const std::string& path, const ModalResult& r) {
     for (size_t p : parts) out << "," << m.strain_share[p];
     out << "\n";
   }
-  if (!out) throw InputError(path + ": write failed");
+  if (!out) throw OutputError(path + ": write failed");
 }
 
 
@@ -112,7 +112,7 @@ JointFrame joint_frame(const Subdomain& sub, const MechanicalState& s, const std
 void write_campbell_csv(const std::string& path, const std::vector<double>& speeds,
                         const std::vector<ModalResult>& results) {
   std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot write the Campbell table");
+  if (!out) throw OutputError(path + ": cannot write the Campbell table");
   out << "speed_rad_s,speed_hz,mode,kind,frequency_hz,natural_frequency_hz,damping_ratio,whirl,dominant_part\n"
       << std::setprecision(17);
   for (size_t i = 0; i < speeds.size(); ++i)
@@ -122,7 +122,7 @@ void write_campbell_csv(const std::string& path, const std::vector<double>& spee
           << m.frequency << "," << m.natural_frequency << "," << m.damping_ratio << "," << m.whirl << ","
           << (m.dominant_part >= 0 ? results[i].parts[static_cast<size_t>(m.dominant_part)] : "") << "\n";
     }
-  if (!out) throw InputError(path + ": write failed");
+  if (!out) throw OutputError(path + ": write failed");
 }
 
 /// The chart of a Campbell table by scripts/campbell_plot.py (rank 0): its path, or empty with a
@@ -148,7 +148,7 @@ std::string draw_campbell(const std::string& csv, std::vector<std::string>& warn
   return csv.substr(0, csv.size() - 4) + ".png";
 }
 
-/// Runs `write` on rank 0; an InputError there is thrown on every rank.
+/// Runs `write` on rank 0; an OutputError or InputError there is thrown on every rank.
 template <class F>
 void on_rank0(MPI_Comm comm, F write) {
   int rank = 0, ok = 1;
@@ -157,13 +157,17 @@ void on_rank0(MPI_Comm comm, F write) {
   if (rank == 0) {
     try {
       write();
-    } catch (const InputError& e) {
+    } catch (const OutputError& e) {  // a file that cannot be written (exit 6)
       ok = 0;
+      err = e.what();
+    } catch (const InputError& e) {   // e.g. the chart script refused the table
+      ok = -1;
       err = e.what();
     }
   }
   MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
-  if (!ok) throw InputError(broadcast_text(err, comm));
+  if (ok == 0) throw OutputError(broadcast_text(err, comm));
+  if (ok < 0) throw InputError(broadcast_text(err, comm));
 }
 
 ModalRunSummary modes_body(RunObjects& o, Scene& scene, const ModalRunOptions& opt, MPI_Comm comm) {

@@ -210,9 +210,9 @@ void GeometricallyExactBeam::add_inertia(const LocalState& s, LocalResidual& out
     }
 }
 
-std::vector<std::string> GeometricallyExactBeam::output_names() const {
-  return {"N", "V2", "V3", "T", "M2", "M3", "axial_strain", "shear_strain_2", "shear_strain_3",
-          "twist", "curvature_2", "curvature_3"};
+std::vector<CellField> GeometricallyExactBeam::cell_fields() const {
+  return {{"N"}, {"V2"}, {"V3"}, {"T"}, {"M2"}, {"M3"}, {"axial_strain"}, {"shear_strain_2"}, {"shear_strain_3"},
+          {"twist"}, {"curvature_2"}, {"curvature_3"}};
 }
 
 void GeometricallyExactBeam::output(const LocalState& s, Eigen::VectorXd& values) const {

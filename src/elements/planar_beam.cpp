@@ -179,8 +179,8 @@ void PlanarBeam::evaluate(const LocalState& st, LocalResidual& out, bool tangent
   out.M(5, 5) += 2.0 * mr;
 }
 
-std::vector<std::string> PlanarBeam::output_names() const {
-  return {"N", "V", "M", "axial_strain", "shear_strain", "curvature"};
+std::vector<CellField> PlanarBeam::cell_fields() const {
+  return {{"N"}, {"V"}, {"M"}, {"axial_strain"}, {"shear_strain"}, {"curvature"}};
 }
 
 void PlanarBeam::output(const LocalState& s, Eigen::VectorXd& values) const {

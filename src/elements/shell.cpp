@@ -628,8 +628,13 @@ void ReissnerMindlinShell::evaluate(const LocalState& s, LocalResidual& out, boo
 
 // ------------------------------------------------------------------ output
 
-std::vector<std::string> ReissnerMindlinShell::output_names() const {
-  return {"n11", "n22", "n12", "m11", "m22", "m12", "q1", "q2", "von_mises_top", "von_mises_bottom"};
+OutputCell ReissnerMindlinShell::output_cell() const {
+  if (nodes().size() == 4) return {CellShape::quadrilateral, {0, 1, 2, 3}};
+  return {CellShape::triangle, {0, 1, 2}};
+}
+
+std::vector<CellField> ReissnerMindlinShell::cell_fields() const {
+  return {{"n11"}, {"n22"}, {"n12"}, {"m11"}, {"m22"}, {"m12"}, {"q1"}, {"q2"}, {"von_mises_top"}, {"von_mises_bottom"}};
 }
 
 void ReissnerMindlinShell::output(const LocalState& s, Eigen::VectorXd& values) const {

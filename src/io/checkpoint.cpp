@@ -60,64 +60,73 @@ long long write_checkpoint(const Subdomain& sub, const std::string& path, const 
                            const Eigen::VectorXd& auxiliary, const RunPosition& p, const AlphaParameters& parameters,
                            double h, int keep) {
   const std::string tmp = path + ".tmp";
-  const hid_t fapl = io_detail::file_access(sub.comm());
-  const hid_t f = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  H5Pclose(fapl);
-  agree(sub, f < 0 ? "cannot create the checkpoint " + tmp : std::string());
-  const hid_t xfer = io_detail::transfer_list(sub.comm());
-  std::string err;
-  auto keep_error = [&](const std::string& e) {
-    if (err.empty() && !e.empty()) err = e + " of the checkpoint " + tmp;
-  };
+  io_detail::H5Calls h5(tmp);
+  const hid_t fapl = io_detail::file_access(h5, sub.comm());
+  hid_t f = -1;
+  if (fapl >= 0) {
+    f = h5(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "create the checkpoint");
+    h5(H5Pclose(fapl), "close the file access list");
+  }
+  agree<OutputError>(sub, h5.error());
+  const hid_t xfer = io_detail::transfer_list(h5, sub.comm());
+  agree<OutputError>(sub, h5.error());
   using io_detail::write_attribute;
   const Model& g = sub.global_model();
-  write_attribute(f, "format", std::string(kFormat));
-  write_attribute(f, "version", kVersion);
-  write_attribute(f, "time", local.t);
-  write_attribute(f, "step", p.step);
-  write_attribute(f, "h_in_use", p.h);
-  write_attribute(f, "cuts_in_row", p.cuts_in_row);
-  write_attribute(f, "good_steps", p.good_steps);
-  write_attribute(f, "newton_total", p.newton_total);
-  write_attribute(f, "newton_max", p.newton_max);
-  write_attribute(f, "step_cuts", p.step_cuts);
-  write_attribute(f, "h_min", p.h_min);
-  write_attribute(f, "last_written", p.last_written);
-  write_attribute(f, "csv_rows", p.results.csv_rows);
-  write_attribute(f, "output_steps", p.results.steps);
-  write_attribute(f, "output_parts", p.results.parts);
-  write_attribute(f, "alpha_m", parameters.alpha_m);
-  write_attribute(f, "alpha_f", parameters.alpha_f);
-  write_attribute(f, "beta", parameters.beta);
-  write_attribute(f, "gamma", parameters.gamma);
-  write_attribute(f, "h", h);
-  write_attribute(f, "model", g.name);
-  write_attribute(f, "ranks", static_cast<long long>(sub.size()));
+  write_attribute(h5, f, "format", std::string(kFormat));
+  write_attribute(h5, f, "version", kVersion);
+  write_attribute(h5, f, "time", local.t);
+  write_attribute(h5, f, "step", p.step);
+  write_attribute(h5, f, "h_in_use", p.h);
+  write_attribute(h5, f, "cuts_in_row", p.cuts_in_row);
+  write_attribute(h5, f, "good_steps", p.good_steps);
+  write_attribute(h5, f, "newton_total", p.newton_total);
+  write_attribute(h5, f, "newton_max", p.newton_max);
+  write_attribute(h5, f, "step_cuts", p.step_cuts);
+  write_attribute(h5, f, "h_min", p.h_min);
+  write_attribute(h5, f, "last_written", p.last_written);
+  write_attribute(h5, f, "csv_rows", p.results.csv_rows);
+  write_attribute(h5, f, "output_steps", p.results.steps);
+  write_attribute(h5, f, "output_parts", p.results.parts);
+  write_attribute(h5, f, "alpha_m", parameters.alpha_m);
+  write_attribute(h5, f, "alpha_f", parameters.alpha_f);
+  write_attribute(h5, f, "beta", parameters.beta);
+  write_attribute(h5, f, "gamma", parameters.gamma);
+  write_attribute(h5, f, "h", h);
+  write_attribute(h5, f, "model", g.name);
+  write_attribute(h5, f, "ranks", static_cast<long long>(sub.size()));
+  // Group and dataset creation are collective: the ranks agree on each group before its datasets.
+  agree<OutputError>(sub, h5.error());
   // The state in model order: each rank its owned rows (owned nodes come first in local vectors).
   const io_detail::StateRows rows(sub);
-  const hid_t st = H5Gcreate2(f, "state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  keep_error(io_detail::write_rows(st, "q", rows.conf, 1, local.q.data(), xfer));
-  keep_error(io_detail::write_rows(st, "v", rows.dof, 1, local.v.data(), xfer));
-  keep_error(io_detail::write_rows(st, "qdd", rows.dof, 1, local.qdd.data(), xfer));
-  keep_error(io_detail::write_rows(st, "a", rows.dof, 1, auxiliary.data(), xfer));
-  keep_error(io_detail::write_rows(st, "lambda", rows.mult, 1, local.lambda.data(), xfer));
-  H5Gclose(st);
+  const hid_t st = h5(H5Gcreate2(f, "state", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create the group state");
+  agree<OutputError>(sub, h5.error());
+  h5.group = "/state";
+  io_detail::write_rows(h5, st, "q", rows.conf, 1, local.q.data(), xfer);
+  io_detail::write_rows(h5, st, "v", rows.dof, 1, local.v.data(), xfer);
+  io_detail::write_rows(h5, st, "qdd", rows.dof, 1, local.qdd.data(), xfer);
+  io_detail::write_rows(h5, st, "a", rows.dof, 1, auxiliary.data(), xfer);
+  io_detail::write_rows(h5, st, "lambda", rows.mult, 1, local.lambda.data(), xfer);
+  h5(H5Gclose(st), "close the group state");
+  agree<OutputError>(sub, h5.error());
   // The model's fingerprint, from the whole model (rank 0 writes it).
   const Fingerprint fp(g);
-  const hid_t mg = H5Gcreate2(f, "model", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t mg = h5(H5Gcreate2(f, "model", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create the group model");
+  agree<OutputError>(sub, h5.error());
+  h5.group = "/model";
   const bool root = sub.rank() == 0;
   auto put = [&](const char* name, const std::vector<long long>& v) {
-    keep_error(io_detail::write_long_rows(mg, name, Rows::all_on_root(v.size(), root), v.data(), xfer));
+    io_detail::write_long_rows(h5, mg, name, Rows::all_on_root(v.size(), root), v.data(), xfer);
   };
   put("node_kind", fp.node_kind);
   put("node_name", fp.node_name);
   put("joint_size", fp.joint_size);
   put("joint_id", fp.joint_id);
   put("element_id", fp.element_id);
-  H5Gclose(mg);
-  H5Pclose(xfer);
-  if (H5Fclose(f) < 0) keep_error("cannot close");
-  agree(sub, err);
+  h5.group.clear();
+  h5(H5Gclose(mg), "close the group model");
+  h5(H5Pclose(xfer), "close the transfer list");
+  h5(H5Fclose(f), "close the checkpoint");
+  agree<OutputError>(sub, h5.error());
   // Rotate (rank 0): .K-1 goes, .k → .k+1, the last → .1, the new one → the name.
   long long bytes = 0;
   if (root) {
@@ -130,10 +139,10 @@ long long write_checkpoint(const Subdomain& sub, const std::string& path, const 
       if (fs::exists(path)) fs::rename(path, numbered(path, 1), ec);
     }
     fs::rename(tmp, path, ec);
-    if (ec) err = "cannot rename the checkpoint " + tmp + ": " + ec.message();
+    if (ec) h5.fail("rename the checkpoint to " + path);  // errno says why
     else bytes = static_cast<long long>(fs::file_size(path, ec));
   }
-  agree(sub, err);
+  agree<OutputError>(sub, h5.error());
   if (sub.size() > 1) MPI_Bcast(&bytes, 1, MPI_LONG_LONG, 0, sub.comm());
   return bytes;
 }
@@ -141,17 +150,19 @@ long long write_checkpoint(const Subdomain& sub, const std::string& path, const 
 Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const AlphaParameters& parameters, double h) {
   std::string err;
   if (sub.rank() == 0 && !std::filesystem::exists(path)) err = path + ": no such checkpoint file";
-  agree(sub, err);
+  agree<InputError>(sub, err);
   // Every rank reads the whole file (a restart happens once; the state is O(model) like the model).
-  const hid_t fapl = io_detail::file_access(sub.comm());
+  io_detail::H5Calls h5(path);
+  const hid_t fapl = io_detail::file_access(h5, sub.comm());
+  agree<InputError>(sub, h5.error());
   H5E_auto2_t func = nullptr;
   void* data = nullptr;
-  H5Eget_auto2(H5E_DEFAULT, &func, &data);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our message, not HDF5's error stack
+  h5(H5Eget_auto2(H5E_DEFAULT, &func, &data), "get HDF5's error printing");
+  h5(H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr), "silence HDF5's error printing");  // our message, not HDF5's stack
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl);
-  H5Eset_auto2(H5E_DEFAULT, func, data);
-  H5Pclose(fapl);
-  agree(sub, f < 0 ? path + ": cannot be read as an HDF5 file (not a checkpoint, or cut off)" : std::string());
+  h5(H5Eset_auto2(H5E_DEFAULT, func, data), "restore HDF5's error printing");
+  h5(H5Pclose(fapl), "close the file access list");
+  agree<InputError>(sub, f < 0 ? path + ": cannot be read as an HDF5 file (not a checkpoint, or cut off)" : h5.error());
   using io_detail::read_attribute;
   std::string format;
   long long version = 0;
@@ -181,7 +192,7 @@ Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const 
     ok = mg >= 0 && io_detail::read_all(mg, "node_kind", kind) && io_detail::read_all(mg, "node_name", name) &&
          io_detail::read_all(mg, "joint_size", jsize) && io_detail::read_all(mg, "joint_id", jid) &&
          io_detail::read_all(mg, "element_id", eid);
-    if (mg >= 0) H5Gclose(mg);
+    if (mg >= 0) ok = H5Gclose(mg) >= 0 && ok;
     if (!ok) err = path + ": the checkpoint is incomplete (its model fingerprint is missing)";
   }
   if (err.empty()) {
@@ -216,13 +227,13 @@ Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const 
     const hid_t st = H5Gopen2(f, "state", H5P_DEFAULT);
     ok = st >= 0 && io_detail::read_all(st, "q", q) && io_detail::read_all(st, "v", v) &&
          io_detail::read_all(st, "qdd", qdd) && io_detail::read_all(st, "a", a) && io_detail::read_all(st, "lambda", lambda);
-    if (st >= 0) H5Gclose(st);
+    if (st >= 0) ok = H5Gclose(st) >= 0 && ok;
     if (!ok || q.size() != static_cast<size_t>(g.num_conf()) || v.size() != static_cast<size_t>(g.num_dofs()) ||
         lambda.size() != static_cast<size_t>(g.num_multipliers()))
       err = path + ": the checkpoint's state is incomplete or of other sizes";
   }
-  H5Fclose(f);
-  agree(sub, err);
+  if (H5Fclose(f) < 0 && err.empty()) err = path + ": cannot be closed after reading (cut off?)";
+  agree<InputError>(sub, err);
   global.t = t;
   global.q = Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
   global.v = Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));

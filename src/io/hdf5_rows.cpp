@@ -1,8 +1,20 @@
 #include "hdf5_rows.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 
 namespace alphaflex::io_detail {
+
+H5Calls::H5Calls(std::string file) : file_(std::move(file)) { clear_errno(); }
+
+void H5Calls::clear_errno() { errno = 0; }
+
+void H5Calls::fail(const std::string& operation) {
+  if (!error_.empty()) return;
+  error_ = "cannot " + operation + ": " + file_;
+  if (errno != 0) error_ += std::string(" (") + std::strerror(errno) + ")";
+}
 
 void Rows::add(unsigned long long first, unsigned long long n) {
   if (n == 0) return;
@@ -41,38 +53,40 @@ StateRows::StateRows(const Subdomain& sub) {
 namespace {
 
 /// The file dataspace of a `total` × `cols` dataset with this rank's rows selected, and the
-/// matching memory dataspace.
-std::pair<hid_t, hid_t> selections(const Rows& rows, int cols) {
+/// matching memory dataspace (−1 where a call failed: recorded in h5).
+std::pair<hid_t, hid_t> selections(H5Calls& h5, const Rows& rows, int cols, const std::string& set) {
   const hsize_t dims[2] = {rows.total, static_cast<hsize_t>(cols)};
   const int rank = cols > 1 ? 2 : 1;
-  const hid_t file = H5Screate_simple(rank, dims, nullptr);
+  const hid_t file = h5(H5Screate_simple(rank, dims, nullptr), "create the dataspace of " + set);
   const hsize_t mdims[2] = {std::max<hsize_t>(rows.mine, 1), static_cast<hsize_t>(cols)};
-  const hid_t mem = H5Screate_simple(rank, mdims, nullptr);
-  H5Sselect_none(file);
+  const hid_t mem = h5(H5Screate_simple(rank, mdims, nullptr), "create the memory dataspace of " + set);
+  if (file < 0 || mem < 0) return {file, mem};
+  h5(H5Sselect_none(file), "select the rows of " + set);
   if (rows.mine == 0) {
-    H5Sselect_none(mem);
+    h5(H5Sselect_none(mem), "select the rows of " + set);
     return {file, mem};
   }
   for (size_t k = 0; k < rows.start.size(); ++k) {
     const hsize_t off[2] = {rows.start[k], 0}, cnt[2] = {rows.count[k], static_cast<hsize_t>(cols)};
-    H5Sselect_hyperslab(file, H5S_SELECT_OR, off, nullptr, cnt, nullptr);
+    h5(H5Sselect_hyperslab(file, H5S_SELECT_OR, off, nullptr, cnt, nullptr), "select the rows of " + set);
   }
   return {file, mem};
 }
 
-std::string write_typed(hid_t loc, const char* name, const Rows& rows, int cols, hid_t file_type, hid_t mem_type,
-                        const void* data, hid_t xfer) {
-  const auto [file_space, mem_space] = selections(rows, cols);
-  std::string error;
-  const hid_t set = H5Dcreate2(loc, name, file_type, file_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (set < 0) error = std::string("cannot create the dataset ") + name;
-  else if (rows.total > 0 && H5Dwrite(set, mem_type, mem_space, file_space, xfer, data) < 0)
-    error = std::string("cannot write the dataset ") + name + " (file system full or gone?)";
-  if (set >= 0) H5Dclose(set);
-  H5Sclose(mem_space);
-  H5Sclose(file_space);
-  return error;
+void write_typed(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, hid_t file_type, hid_t mem_type,
+                 const void* data, hid_t xfer) {
+  const std::string set = "the dataset " + (h5.group.empty() ? std::string() : h5.group + "/") + name;
+  const auto [file_space, mem_space] = selections(h5, rows, cols, set);
+  if (file_space >= 0 && mem_space >= 0) {
+    const hid_t d = h5(H5Dcreate2(loc, name, file_type, file_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create " + set);
+    if (d >= 0 && rows.total > 0) h5(H5Dwrite(d, mem_type, mem_space, file_space, xfer, data), "write " + set);
+    if (d >= 0) h5(H5Dclose(d), "close " + set);
+  }
+  if (mem_space >= 0) h5(H5Sclose(mem_space), "close the memory dataspace of " + set);
+  if (file_space >= 0) h5(H5Sclose(file_space), "close the dataspace of " + set);
 }
+
+}  // namespace
 
 template <class T>
 bool read_typed(hid_t loc, const char* name, hid_t mem_type, std::vector<T>& out) {
@@ -80,105 +94,126 @@ bool read_typed(hid_t loc, const char* name, hid_t mem_type, std::vector<T>& out
   const hid_t set = H5Dopen2(loc, name, H5P_DEFAULT);
   if (set < 0) return false;
   const hid_t space = H5Dget_space(set);
-  out.resize(static_cast<size_t>(H5Sget_simple_extent_npoints(space)));
-  const bool ok = out.empty() || H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0;
-  H5Sclose(space);
-  H5Dclose(set);
-  return ok;
+  const hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
+  bool ok = n >= 0;
+  if (ok) {
+    out.resize(static_cast<size_t>(n));
+    ok = out.empty() || H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) >= 0;
+  }
+  if (space >= 0) ok = H5Sclose(space) >= 0 && ok;
+  return H5Dclose(set) >= 0 && ok;
 }
 
-}  // namespace
-
-std::string write_rows(hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer) {
-  return write_typed(loc, name, rows, cols, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data, xfer);
+void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer) {
+  write_typed(h5, loc, name, rows, cols, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data, xfer);
 }
 
-std::string write_int_rows(hid_t loc, const char* name, const Rows& rows, const int* data, hid_t xfer) {
-  return write_typed(loc, name, rows, 1, H5T_STD_I32LE, H5T_NATIVE_INT, data, xfer);
+void write_int_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const int* data, hid_t xfer) {
+  write_typed(h5, loc, name, rows, 1, H5T_STD_I32LE, H5T_NATIVE_INT, data, xfer);
 }
 
-std::string write_long_rows(hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer) {
-  return write_typed(loc, name, rows, 1, H5T_STD_I64LE, H5T_NATIVE_LLONG, data, xfer);
+void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer) {
+  write_typed(h5, loc, name, rows, 1, H5T_STD_I64LE, H5T_NATIVE_LLONG, data, xfer);
 }
 
 bool read_all(hid_t loc, const char* name, std::vector<double>& out) { return read_typed(loc, name, H5T_NATIVE_DOUBLE, out); }
 bool read_all(hid_t loc, const char* name, std::vector<long long>& out) { return read_typed(loc, name, H5T_NATIVE_LLONG, out); }
 
-void write_attribute(hid_t loc, const char* name, double value) {
-  const hid_t space = H5Screate(H5S_SCALAR);
-  const hid_t attr = H5Acreate2(loc, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
-  H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
-  H5Aclose(attr);
-  H5Sclose(space);
+namespace {
+
+/// Attribute `name` of type `file_type` on `space` (closed here), written from `value`.
+void write_attribute_of(H5Calls& h5, hid_t loc, const char* name, hid_t file_type, hid_t mem_type, hid_t space,
+                        const void* value) {
+  const std::string what = std::string("the attribute ") + name;
+  if (space < 0) return;
+  const hid_t attr = h5(H5Acreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), "create " + what);
+  if (attr >= 0) {
+    h5(H5Awrite(attr, mem_type, value), "write " + what);
+    h5(H5Aclose(attr), "close " + what);
+  }
+  h5(H5Sclose(space), "close the dataspace of " + what);
 }
 
-void write_attribute(hid_t loc, const char* name, long long value) {
-  const hid_t space = H5Screate(H5S_SCALAR);
-  const hid_t attr = H5Acreate2(loc, name, H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT);
-  H5Awrite(attr, H5T_NATIVE_LLONG, &value);
-  H5Aclose(attr);
-  H5Sclose(space);
+}  // namespace
+
+void write_attribute(H5Calls& h5, hid_t loc, const char* name, double value) {
+  const hid_t space = h5(H5Screate(H5S_SCALAR), std::string("create the dataspace of the attribute ") + name);
+  write_attribute_of(h5, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space, &value);
 }
 
-void write_attribute(hid_t loc, const char* name, const std::string& value) {
-  const hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, std::max<size_t>(value.size(), 1));
-  const hid_t space = H5Screate(H5S_SCALAR);
-  const hid_t attr = H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+void write_attribute(H5Calls& h5, hid_t loc, const char* name, long long value) {
+  const hid_t space = h5(H5Screate(H5S_SCALAR), std::string("create the dataspace of the attribute ") + name);
+  write_attribute_of(h5, loc, name, H5T_STD_I64LE, H5T_NATIVE_LLONG, space, &value);
+}
+
+void write_attribute_array(H5Calls& h5, hid_t loc, const char* name, double value) {
+  const hsize_t one = 1;
+  const hid_t space = h5(H5Screate_simple(1, &one, nullptr), std::string("create the dataspace of the attribute ") + name);
+  write_attribute_of(h5, loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, space, &value);
+}
+
+void write_attribute(H5Calls& h5, hid_t loc, const char* name, const std::string& value) {
+  const std::string what = std::string("the string type of the attribute ") + name;
+  const hid_t type = h5(H5Tcopy(H5T_C_S1), "create " + what);
+  if (type < 0) return;
+  h5(H5Tset_size(type, std::max<size_t>(value.size(), 1)), "size " + what);
+  const hid_t space = h5(H5Screate(H5S_SCALAR), std::string("create the dataspace of the attribute ") + name);
   std::string padded = value;
   padded.resize(std::max<size_t>(value.size(), 1), '\0');
-  H5Awrite(attr, type, padded.data());
-  H5Aclose(attr);
-  H5Sclose(space);
-  H5Tclose(type);
+  write_attribute_of(h5, loc, name, type, type, space, padded.data());
+  h5(H5Tclose(type), "close " + what);
 }
 
-bool read_attribute(hid_t loc, const char* name, double& value) {
+namespace {
+
+bool read_attribute_as(hid_t loc, const char* name, hid_t mem_type, void* value) {
   if (H5Aexists(loc, name) <= 0) return false;
   const hid_t attr = H5Aopen(loc, name, H5P_DEFAULT);
-  const bool ok = H5Aread(attr, H5T_NATIVE_DOUBLE, &value) >= 0;
-  H5Aclose(attr);
-  return ok;
+  if (attr < 0) return false;
+  const bool ok = H5Aread(attr, mem_type, value) >= 0;
+  return H5Aclose(attr) >= 0 && ok;
+}
+
+}  // namespace
+
+bool read_attribute(hid_t loc, const char* name, double& value) {
+  return read_attribute_as(loc, name, H5T_NATIVE_DOUBLE, &value);
 }
 
 bool read_attribute(hid_t loc, const char* name, long long& value) {
-  if (H5Aexists(loc, name) <= 0) return false;
-  const hid_t attr = H5Aopen(loc, name, H5P_DEFAULT);
-  const bool ok = H5Aread(attr, H5T_NATIVE_LLONG, &value) >= 0;
-  H5Aclose(attr);
-  return ok;
+  return read_attribute_as(loc, name, H5T_NATIVE_LLONG, &value);
 }
 
 bool read_attribute(hid_t loc, const char* name, std::string& value) {
   if (H5Aexists(loc, name) <= 0) return false;
   const hid_t attr = H5Aopen(loc, name, H5P_DEFAULT);
+  if (attr < 0) return false;
   const hid_t type = H5Aget_type(attr);
-  const size_t n = H5Tget_size(type);
+  const size_t n = type < 0 ? 0 : H5Tget_size(type);
   std::string buf(n, '\0');
-  const hid_t mem = H5Tcopy(H5T_C_S1);
-  H5Tset_size(mem, n);
-  const bool ok = H5Aread(attr, mem, buf.data()) >= 0;
-  H5Tclose(mem);
-  H5Tclose(type);
-  H5Aclose(attr);
+  const hid_t mem = n == 0 ? -1 : H5Tcopy(H5T_C_S1);
+  bool ok = mem >= 0 && H5Tset_size(mem, n) >= 0 && H5Aread(attr, mem, buf.data()) >= 0;
+  if (mem >= 0) ok = H5Tclose(mem) >= 0 && ok;
+  if (type >= 0) ok = H5Tclose(type) >= 0 && ok;
+  ok = H5Aclose(attr) >= 0 && ok;
   buf.erase(std::find(buf.begin(), buf.end(), '\0'), buf.end());
   value = buf;
   return ok;
 }
 
-hid_t file_access(MPI_Comm comm) {
+hid_t file_access(H5Calls& h5, MPI_Comm comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (size > 1) H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
+  const hid_t fapl = h5(H5Pcreate(H5P_FILE_ACCESS), "create a file access list");
+  if (fapl >= 0 && size > 1) h5(H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL), "set MPI-IO file access");
   return fapl;
 }
 
-hid_t transfer_list(MPI_Comm comm) {
+hid_t transfer_list(H5Calls& h5, MPI_Comm comm) {
   int size = 1;
   MPI_Comm_size(comm, &size);
-  const hid_t xfer = H5Pcreate(H5P_DATASET_XFER);
-  if (size > 1) H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE);
+  const hid_t xfer = h5(H5Pcreate(H5P_DATASET_XFER), "create a transfer list");
+  if (xfer >= 0 && size > 1) h5(H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE), "set collective MPI-IO transfers");
   return xfer;
 }
 

@@ -14,12 +14,39 @@
 
 namespace alphaflex::io_detail {
 
-/// The same outcome of a file operation on every rank: an InputError with the first failing
-/// rank's message, so that no rank goes on into a collective call alone.
-inline void agree(const Subdomain& sub, const std::string& local_error) {
+/// The same outcome of a file operation on every rank: an `Error` (OutputError for what is
+/// written, InputError for a file the user gave) with the first failing rank's message, so that no
+/// rank goes on into a collective call alone.
+template <class Error>
+void agree(const Subdomain& sub, const std::string& local_error) {
   const std::string error = sub.first_error(local_error);
-  if (!error.empty()) throw InputError(error);
+  if (!error.empty()) throw Error(error);
 }
+
+/// The HDF5 calls on one file, every one checked: each call's status (hid_t or herr_t, < 0 if it
+/// failed) goes through operator(), which keeps the first failure as "cannot OPERATION: FILE" with
+/// errno's text when the call left one (a full or vanished file system). The caller makes the
+/// ranks agree on error() (collective calls fail on every rank or must be agreed on).
+class H5Calls {
+ public:
+  explicit H5Calls(std::string file);
+  template <class Status>
+  Status operator()(Status status, const std::string& operation) {
+    if (status < 0) fail(operation);
+    clear_errno();
+    return status;
+  }
+  /// Records a failure that is not an HDF5 status (e.g. a rename).
+  void fail(const std::string& operation);
+  const std::string& error() const { return error_; }
+  const std::string& file() const { return file_; }
+  /// The group that dataset operations are in, for messages ("/step_000003").
+  std::string group;
+
+ private:
+  static void clear_errno();
+  std::string file_, error_;
+};
 
 /// Rows of a dataset that this rank writes: intervals [start, start + count) of its first
 /// dimension (sorted, disjoint), out of `total` rows.
@@ -40,27 +67,31 @@ struct StateRows {
 };
 
 /// Creates dataset `name` of `rows.total` × `cols` values in `loc` and writes this rank's rows
-/// (`rows.mine` × `cols` values, in row order) with the transfer list `xfer`. Collective. Returns
-/// an empty string, or what failed (the caller makes the ranks agree on it).
-std::string write_rows(hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer);
-std::string write_int_rows(hid_t loc, const char* name, const Rows& rows, const int* data, hid_t xfer);
-std::string write_long_rows(hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer);
+/// (`rows.mine` × `cols` values, in row order) with the transfer list `xfer`. Collective. A failed
+/// call is recorded in `h5` (the caller makes the ranks agree on it).
+void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer);
+void write_int_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const int* data, hid_t xfer);
+void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer);
 
-/// The whole of a dataset as doubles / integers (every rank reads all of it); false if missing.
+/// The whole of a dataset as doubles / integers (every rank reads all of it); false if missing or
+/// unreadable.
 bool read_all(hid_t loc, const char* name, std::vector<double>& out);
 bool read_all(hid_t loc, const char* name, std::vector<long long>& out);
 
 /// A scalar attribute of an object (written by every rank with the same value: collective).
-void write_attribute(hid_t loc, const char* name, double value);
-void write_attribute(hid_t loc, const char* name, long long value);
-void write_attribute(hid_t loc, const char* name, const std::string& value);
+void write_attribute(H5Calls& h5, hid_t loc, const char* name, double value);
+void write_attribute(H5Calls& h5, hid_t loc, const char* name, long long value);
+void write_attribute(H5Calls& h5, hid_t loc, const char* name, const std::string& value);
+/// An attribute of an array of one double (the layout of the results' step times).
+void write_attribute_array(H5Calls& h5, hid_t loc, const char* name, double value);
+/// False if the attribute is missing or unreadable.
 bool read_attribute(hid_t loc, const char* name, double& value);
 bool read_attribute(hid_t loc, const char* name, long long& value);
 bool read_attribute(hid_t loc, const char* name, std::string& value);
 
 /// File access for `comm`: MPI-IO when it has more than one rank, HDF5's default otherwise.
-hid_t file_access(MPI_Comm comm);
+hid_t file_access(H5Calls& h5, MPI_Comm comm);
 /// A transfer list: collective MPI-IO when `comm` has more than one rank.
-hid_t transfer_list(MPI_Comm comm);
+hid_t transfer_list(H5Calls& h5, MPI_Comm comm);
 
 }  // namespace alphaflex::io_detail

@@ -15,6 +15,16 @@ void LocalResidual::reset(int n, bool tangent) {
   }
 }
 
+std::vector<std::string> Element::output_names() const {
+  std::vector<std::string> names;
+  for (const CellField& f : cell_fields()) {
+    if (f.components == 1) names.push_back(f.name);
+    else
+      for (int k = 0; k < f.components; ++k) names.push_back(f.name + "[" + std::to_string(k) + "]");
+  }
+  return names;
+}
+
 void Constraint::time_derivative(const Eigen::VectorXd&, double, Eigen::VectorXd& phi_t) const {
   phi_t = Eigen::VectorXd::Zero(size());
 }
@@ -125,6 +135,16 @@ MechanicalState Model::initial_state() const {
     s.v.segment(n.first_dof, n.ndof) = n.v0;
   }
   return s;
+}
+
+LocalState Model::local_state(const Element& e, const MechanicalState& s) const {
+  LocalState ls;
+  const std::vector<int> idx = dofs_of(e.nodes());
+  ls.q = gather(s.q, confs_of(e.nodes()));
+  ls.v = gather(s.v, idx);
+  ls.qdd = gather(s.qdd, idx);
+  ls.t = s.t;
+  return ls;
 }
 
 Eigen::VectorXd gather(const Eigen::VectorXd& global, const std::vector<int>& idx) {

@@ -72,14 +72,8 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
     }
     case Kind::ElementOutput: {
       const Element& e = *model.elements()[static_cast<size_t>(element)];
-      LocalState ls;
-      const auto idx = model.dofs_of(e.nodes());
-      ls.q = gather(s.q, model.confs_of(e.nodes()));
-      ls.v = gather(s.v, idx);
-      ls.qdd = gather(s.qdd, idx);
-      ls.t = s.t;
       Eigen::VectorXd values;
-      e.output(ls, values);
+      e.output(model.local_state(e, s), values);
       return values[component];
     }
   }

@@ -251,7 +251,7 @@ class Study {
       }
     }
     MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
-    if (!ok) throw InputError(err.empty() ? "cannot write the study's output files (see rank 0)" : err);
+    if (!ok) throw OutputError(err.empty() ? "cannot write the study's output files (see rank 0)" : err);
   }
 
   /// Overrides of one run: the setting's solver map, the study's `set:`, the command line's --set,
@@ -882,7 +882,7 @@ class Study {
       }
     }
     MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
-    if (!ok) throw InputError(err.empty() ? "cannot write the study's files (see rank 0)" : err);
+    if (!ok) throw OutputError(err.empty() ? "cannot write the study's files (see rank 0)" : err);
     if (rank_ == 0 && spec_.plots && opt_.plots) plot();
     MPI_Barrier(comm_);
   }
@@ -892,7 +892,7 @@ class Study {
   void write_csv() {
     const std::string path = csv_path("_study.csv");
     std::ofstream f(path);
-    if (!f) throw InputError(path + ": cannot write");
+    if (!f) throw OutputError(path + ": cannot write");
     f << "# alphaflex study " << spec_.name << ": mode " << mode_name(spec_.mode) << ", scene " << spec_.scene
       << ", study " << spec_.file << "\n";
     f << "# reference: " << res_.reference_label << "\n";

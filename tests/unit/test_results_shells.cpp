@@ -6,11 +6,14 @@
 // The XDMF index must have a "shells" grid with a Mixed topology and every field as cell data.
 // The files go to a fresh temporary directory, or to $ALPHAFLEX_TEST_OUTPUT_DIR/results_shells
 // when that is set (test_support.hpp): ctest scenes.paraview_shells_unit sets it and opens the
-// files with ParaView (tests/scenes/paraview_shells.py).
+// files with ParaView (tests/scenes/paraview_shells.py). ResultsCapabilities: elements of types
+// the writer does not know are drawn and measured from what they say of themselves.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
 #include <cmath>
+#include <filesystem>
+#include <functional>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -22,6 +25,7 @@
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/model/model.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
+#include "alphaflex/study/strain_energy.hpp"
 #include "test_support.hpp"
 
 using namespace alphaflex;
@@ -214,4 +218,126 @@ TEST(ResultsShells, MixedShellMeshIsWrittenWithConnectivityGeometryAndResultants
     EXPECT_NE(x.find("<Attribute Name=\"" + name + "\" AttributeType=\"Scalar\" Center=\"Cell\">"), std::string::npos)
         << name;
   EXPECT_EQ(x.find("<Grid Name=\"beams\""), std::string::npos);
+}
+
+// ---- Element capabilities (model/element.hpp): the results and the strain energy ask elements
+// what they draw and store, so an element type the writer has never seen is written correctly.
+
+namespace {
+
+/// What a test element of a structure the writer does not know says of itself: its structure,
+/// its cell, its fields, their values and its energy. It has no forces: only its capabilities are
+/// under test.
+struct ToyKind {
+  const char* structure;
+  OutputCell cell;
+  std::vector<CellField> fields;
+  std::function<Eigen::VectorXd(const LocalState&)> values;
+  std::function<double(const Eigen::VectorXd&)> energy;
+};
+
+class ToyElement final : public Element {
+ public:
+  ToyElement(std::string name, std::vector<int> nodes, const ToyKind& kind)
+      : Element(std::move(name), std::move(nodes)), kind_(&kind) {}
+  const char* type() const override { return kind_->structure; }
+  void evaluate(const LocalState&, LocalResidual&, bool) const override {}
+  const char* structure() const override { return kind_->structure; }
+  OutputCell output_cell() const override { return kind_->cell; }
+  std::vector<CellField> cell_fields() const override { return kind_->fields; }
+  void output(const LocalState& s, Eigen::VectorXd& v) const override { v = kind_->values(s); }
+  double elastic_energy(const Eigen::VectorXd& q) const override { return kind_->energy(q); }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<ToyElement>(*this); }
+
+ private:
+  const ToyKind* kind_;
+};
+
+}  // namespace
+
+TEST(ResultsCapabilities, UnknownElementTypesAreDrawnAndMeasuredFromTheirCapabilities) {
+  Model model;
+  model.name = "toys";
+  const std::vector<Eigen::Vector3d> X = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 0, 0}};
+  for (size_t i = 0; i < X.size(); ++i) model.add_node(frame_node("n" + std::to_string(i), X[i]));
+  // "membrane": triangles drawn with their corners in the order (0, 2, 1), a field of 3
+  // components (the mean of the nodes' positions) and a scalar (t); energy: the sum of the x.
+  const ToyKind membrane{"membrane", {CellShape::triangle, {0, 2, 1}}, {{"centre", 3}, {"t", 1}},
+                         [](const LocalState& s) {
+                           Eigen::VectorXd v(4);
+                           v.head<3>() = (s.q.segment<3>(0) + s.q.segment<3>(7) + s.q.segment<3>(14)) / 3.0;
+                           v[3] = s.t;
+                           return v;
+                         },
+                         [](const Eigen::VectorXd& q) { return q[0] + q[7] + q[14]; }};
+  // "cable": lines drawn from the second node to the first, tension x_0 − x_1, energy ½ (x_1 − x_0)².
+  const ToyKind cable{"cable", {CellShape::line, {1, 0}}, {{"tension"}},
+                      [](const LocalState& s) { return Eigen::VectorXd::Constant(1, s.q[0] - s.q[7]); },
+                      [](const Eigen::VectorXd& q) { return 0.5 * (q[7] - q[0]) * (q[7] - q[0]); }};
+  model.add_element(std::make_unique<ToyElement>("m[0]", std::vector<int>{0, 1, 2}, membrane));
+  model.add_element(std::make_unique<ToyElement>("m[1]", std::vector<int>{1, 3, 2}, membrane));
+  model.add_element(std::make_unique<ToyElement>("c[0]", std::vector<int>{1, 4}, cable));
+  MechanicalState s = model.initial_state();
+  s.t = 0.25;
+  for (size_t i = 0; i < X.size(); ++i) s.q[model.nodes()[i].first_conf] += 0.1 * static_cast<double>(i);
+
+  const alphaflex::testing::TestOutputDir out("results_toys");
+  const std::filesystem::path dir = out.path();
+  std::string h5, xdmf;
+  {
+    Subdomain sub(model, MPI_COMM_SELF);
+    ResultsWriter w(sub, dir.string(), "toys", true);
+    w.write_sensors(s.t, {});
+    w.write_fields(s);
+    w.finish();
+    h5 = w.h5_path();
+    xdmf = w.xdmf_path();
+  }
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << h5;
+  // Faces: a Mixed topology (4 = triangle, then the corners in the element's cell order);
+  // lines only: a Polyline of two node ids per cell.
+  EXPECT_EQ(read_ints(f, "/topology/membrane_connectivity"), (std::vector<int>{4, 0, 2, 1, 4, 1, 2, 3}));
+  EXPECT_EQ(read_ints(f, "/topology/cable_connectivity"), (std::vector<int>{4, 1}));
+  // A field of 3 components is one dataset of 3 columns; each value is the element's own.
+  EXPECT_EQ(shape(f, "/step_000000/membrane_centre"), (std::vector<hsize_t>{2, 3}));
+  EXPECT_EQ(shape(f, "/step_000000/membrane_t"), (std::vector<hsize_t>{2}));
+  std::vector<double> want;
+  Eigen::VectorXd v;
+  for (int e = 0; e < 2; ++e) {
+    const Element& el = *model.elements()[static_cast<size_t>(e)];
+    el.output(model.local_state(el, s), v);
+    for (int k = 0; k < 3; ++k) want.push_back(v[k]);
+  }
+  EXPECT_EQ(read_doubles(f, "/step_000000/membrane_centre"), want);
+  EXPECT_EQ(read_doubles(f, "/step_000000/membrane_t"), (std::vector<double>{0.25, 0.25}));
+  EXPECT_EQ(read_doubles(f, "/step_000000/cable_tension"), (std::vector<double>{s.q[7] - s.q[28]}));
+  H5Fclose(f);
+  EXPECT_EQ(model.elements()[0]->output_names(), (std::vector<std::string>{"centre[0]", "centre[1]", "centre[2]", "t"}));
+
+  std::ifstream in(xdmf);
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string x = buf.str();
+  // Grids of lines come first, then faces; a grid is named after its structure.
+  const size_t cables = x.find("<Grid Name=\"cables\""), membranes = x.find("<Grid Name=\"membranes\"");
+  ASSERT_NE(cables, std::string::npos);
+  ASSERT_NE(membranes, std::string::npos);
+  EXPECT_LT(cables, membranes);
+  EXPECT_NE(x.find("<Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"2\">"), std::string::npos);
+  EXPECT_NE(x.find("<Topology TopologyType=\"Mixed\" NumberOfElements=\"2\">"), std::string::npos);
+  EXPECT_NE(x.find("<Attribute Name=\"centre\" AttributeType=\"Vector\" Center=\"Cell\">\n      <DataItem Dimensions=\"2 3\""),
+            std::string::npos);
+
+  // The strain energy of each block of a structure: the sum of its elements' elastic energies.
+  const auto parts = study::flexible_parts(model);
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[0].name, "m");
+  EXPECT_EQ(parts[0].kind, "membrane");
+  EXPECT_EQ(parts[1].name, "c");
+  EXPECT_EQ(parts[1].kind, "cable");
+  const std::vector<double> W = study::strain_energies(model, parts, s);
+  const double x0 = s.q[0], x1 = s.q[7], x2 = s.q[14], x3 = s.q[21], x4 = s.q[28];
+  EXPECT_EQ(W[0], (x0 + x1 + x2) + (x1 + x3 + x2));
+  EXPECT_EQ(W[1], 0.5 * (x4 - x1) * (x4 - x1));
 }

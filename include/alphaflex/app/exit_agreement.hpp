@@ -26,7 +26,8 @@ int end_run(MPI_Comm exit_comm, int code, const std::string& message, double tim
 /// rank and aborts the job before any collective destructor could wait for ranks that never come.
 void fail_together(MPI_Comm exit_comm, int code, const std::string& message, double timeout);
 
-/// The exit code of an error: 1 bad input, 3 solver failure, 4 anything else.
+/// The exit code of an error: 1 bad input, 3 solver failure, 5 interrupted, 6 output not written,
+/// 4 anything else.
 int exit_code_of(const std::exception& e);
 
 }  // namespace alphaflex

@@ -18,6 +18,14 @@ class SolverError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Results or a checkpoint that cannot be written (a full or vanished file system, no permission):
+/// the message names the file, the operation and errno's text when there is one. Exit code 6: the
+/// input was good and the computation may have been too, so neither 1 nor 3.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// An element that cannot be evaluated in the configuration reached (a spring whose two points
 /// coincide). During a run a solver failure like any other; during the consistent start at t = 0
 /// the configuration is the scene's own (projected onto its joints), so run_simulation reports it

@@ -80,15 +80,19 @@ class GeometricallyExactBeam final : public Element {
   std::unique_ptr<Element> clone() const override { return std::make_unique<GeometricallyExactBeam>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
+  /// Drawn as a line segment between its nodes in the results' "beams" grid.
+  const char* structure() const override { return "beam"; }
+  OutputCell output_cell() const override { return {CellShape::line, {0, 1}}; }
   /// {N, V2, V3, T, M2, M3, axial_strain, shear_strain_2, shear_strain_3, twist, curvature_2,
-  /// curvature_3}: section forces C ε (N, N·m) and strains ε, constant on the element, section frame.
-  std::vector<std::string> output_names() const override;
+  /// curvature_3}, scalars: section forces C ε (N, N·m) and strains ε, constant on the element,
+  /// section frame.
+  std::vector<CellField> cell_fields() const override;
   void output(const LocalState& s, Eigen::VectorXd& values) const override;
 
   /// ε at the configuration q (14 numbers: two poses).
   Vector6d strain(const Eigen::VectorXd& q) const;
   /// W = (L0/2) εᵀ C ε (J).
-  double elastic_energy(const Eigen::VectorXd& q) const;
+  double elastic_energy(const Eigen::VectorXd& q) const override;
 
   /// ε at the given poses of nodes A and B; instantiated for double, ad::FixedAD1<12> and
   /// ad::FixedAD2<12> (spatial_kernel.hpp).

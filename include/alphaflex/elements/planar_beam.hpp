@@ -62,15 +62,18 @@ class PlanarBeam final : public Element {
   std::unique_ptr<Element> clone() const override { return std::make_unique<PlanarBeam>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
-  /// {N, V, M, axial_strain, shear_strain, curvature}: section forces C ε (N, N, N·m) and strains ε,
-  /// constant on the element, in the section frame.
-  std::vector<std::string> output_names() const override;
+  /// Drawn as a line segment between its nodes in the results' "beams" grid.
+  const char* structure() const override { return "beam"; }
+  OutputCell output_cell() const override { return {CellShape::line, {0, 1}}; }
+  /// {N, V, M, axial_strain, shear_strain, curvature}, scalars: section forces C ε (N, N, N·m) and
+  /// strains ε, constant on the element, in the section frame.
+  std::vector<CellField> cell_fields() const override;
   void output(const LocalState& s, Eigen::VectorXd& values) const override;
 
   /// ε at the local configuration q = (x_A, y_A, θ_A, x_B, y_B, θ_B).
   Eigen::Vector3d strain(const Eigen::VectorXd& q) const { return strain_of<double>(q.data()); }
   /// W = (L0/2) εᵀ C ε (J).
-  double elastic_energy(const Eigen::VectorXd& q) const;
+  double elastic_energy(const Eigen::VectorXd& q) const override;
 
   /// ε for any scalar (tests differentiate it with automatic differentiation).
   template <class S>

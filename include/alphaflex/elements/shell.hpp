@@ -92,15 +92,19 @@ class ReissnerMindlinShell final : public Element {
   std::unique_ptr<Element> clone() const override { return std::make_unique<ReissnerMindlinShell>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
 
-  /// {n11, n22, n12, m11, m22, m12, q1, q2, von_mises_top, von_mises_bottom}: resultants at the
-  /// element centre in its material axes (N/m, N·m/m, N/m) and the von Mises stress (Pa) at
+  /// Drawn as a quadrilateral or a triangle (its nodes, counter-clockwise about the normal) in the
+  /// results' "shells" grid.
+  const char* structure() const override { return "shell"; }
+  OutputCell output_cell() const override;
+  /// {n11, n22, n12, m11, m22, m12, q1, q2, von_mises_top, von_mises_bottom}, scalars: resultants
+  /// at the element centre in its material axes (N/m, N·m/m, N/m) and the von Mises stress (Pa) at
   /// ζ = ±t/2 from σ = n/t ± 6 m/t² (plane stress; exact for a homogeneous section).
-  std::vector<std::string> output_names() const override;
+  std::vector<CellField> cell_fields() const override;
   void output(const LocalState& s, Eigen::VectorXd& values) const override;
 
   /// Elastic energy W (J) and its exact derivatives r = ∂W/∂δ, K = ∂r/∂δ' (spatial_kernel.hpp's
   /// convention) at the configuration q (7 per node).
-  double elastic_energy(const Eigen::VectorXd& q) const;
+  double elastic_energy(const Eigen::VectorXd& q) const override;
   void elastic_forces(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* K = nullptr) const;
 
   /// Reference area (m²), centre frame (columns: material axis 1, axis 2, normal).

@@ -43,7 +43,8 @@ struct Checkpoint {
 };
 
 /// Writes the checkpoint of this rank's part to `path` (collective): atomically, keeping `keep`
-/// checkpoints. Returns its size in bytes.
+/// checkpoints. Returns its size in bytes. Throws OutputError on every rank if a write failed on
+/// one (naming the file, the operation and errno's text).
 long long write_checkpoint(const Subdomain& sub, const std::string& path, const MechanicalState& local,
                            const Eigen::VectorXd& auxiliary, const RunPosition& position,
                            const AlphaParameters& parameters, double h, int keep);

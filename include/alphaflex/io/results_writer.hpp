@@ -21,9 +21,14 @@
 // In parallel every rank writes the rows it owns (its nodes, elements and joints, at their places
 // in model order) with collective MPI-IO writes of parallel HDF5, so the files have the same layout
 // and order whatever the number of ranks; rank 0 writes the CSV, NAME.h5 and the XDMF index.
+//
+// What is drawn is asked of the elements (Element::structure, output_cell, cell_fields, output):
+// the elements of a structure "beam" are the grid "beams" with datasets beam_<field>, and so on; the
+// writer tests no element type. It composes three parts (private to src/io): the HDF5 rows of the
+// part files and NAME.h5 (results_parts.hpp), the XDMF index (xdmf_index.hpp) and the sensor CSV
+// (sensor_csv.hpp); it decides when to commit and makes the ranks agree on every outcome. A failed
+// write is an OutputError on every rank (exit code 6), naming the file and the operation.
 #include <chrono>
-#include <cstdio>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +37,14 @@
 #include "alphaflex/partition/subdomain.hpp"
 
 namespace alphaflex {
+
+namespace io_detail {  // the parts of the writer (src/io)
+struct ElementGrid;
+struct OutputStep;
+class ResultsParts;
+class XdmfIndex;
+class SensorCsv;
+}  // namespace io_detail
 
 /// Where a restart picks up the results of the run it continues (from its checkpoint): the
 /// sensor rows, output steps and parts that were complete at the checkpoint.
@@ -47,7 +60,8 @@ class ResultsWriter {
   /// With `resume`, continues the results of a run from a checkpoint instead: the CSV is cut
   /// after the checkpoint's rows, parts after its last one are removed, NAME.h5 and the index are
   /// rebuilt from the parts that remain (files that are missing are started anew, with a warning
-  /// in `warnings()`). Collective; throws InputError on every rank if any part failed.
+  /// in `warnings()`). Collective; throws OutputError on every rank if a file cannot be written,
+  /// InputError if the results of the checkpoint cannot be continued.
   ResultsWriter(const Subdomain& subdomain, const std::string& outdir, const std::string& name, bool hdf5,
                 double commit_interval = 1.0, const ResultsPosition* resume = nullptr);
   ~ResultsWriter();
@@ -72,46 +86,27 @@ class ResultsWriter {
   std::string h5_path() const { return h5_path_; }
   std::string xdmf_path() const { return xdmf_path_; }
   std::string csv_path() const { return csv_path_; }
-  int fields_written() const { return static_cast<int>(times_.size() + open_times_.size()); }
+  int fields_written() const;
 
  private:
-  void open_part();
-  void write_topology(long long file);
-  void write_xdmf() const;
-  void write_links();
-  /// Rank 0: NAME.h5's links to the parts and the XDMF index, rewritten; the error, if any (no throw).
-  std::string write_index();
+  /// Rank 0: NAME.h5's links to the parts and the XDMF index, rewritten; the error, if any.
+  std::string write_index() const;
   void resume_from(const ResultsPosition& at);
 
   const Subdomain& sub_;
-  const Model& model_;   ///< the local model (this rank's subdomain)
-  const Model& global_;  ///< the whole model: names, counts and layouts
   bool root_, hdf5_;
   double commit_interval_;
-  std::string name_, dir_, h5_path_, xdmf_path_, csv_path_, parts_dir_, parts_name_;
-  long long transfer_ = -1;               ///< hid_t of the (collective) transfer list
-  long long part_ = -1;                   ///< hid_t of the open part, −1 if none
-  long long parts_ = 0;                   ///< parts committed; the open one is number parts_
-  std::string error_;  ///< the first failed HDF5 call of the current output step, on this rank
-  std::FILE* csv_ = nullptr;
+  std::string h5_path_, xdmf_path_, csv_path_, parts_dir_;
+  long long parts_ = 0;  ///< parts committed; the open one is number parts_
   long long csv_rows_ = 0;
   std::chrono::steady_clock::time_point part_opened_ = std::chrono::steady_clock::now();
   double last_commit_cost_ = 0.0;  ///< s of wall time of the last commit (rank 0's)
-  // Committed output steps: time, group name, part index; and those of the open part.
-  std::vector<double> times_, open_times_;
-  std::vector<std::string> groups_, open_groups_;
-  std::vector<long long> group_part_;
+  std::vector<io_detail::OutputStep> steps_, open_steps_;  ///< committed output steps; those of the open part
   std::vector<std::string> warnings_;
-  std::vector<int> beams_;                 ///< global elements drawn as beam segments
-  std::vector<std::string> beam_fields_;   ///< their result fields (cell data)
-  std::vector<int> shells_;                ///< global elements drawn as shell triangles and quadrilaterals
-  std::vector<std::string> shell_fields_;  ///< their result fields (cell data)
-  size_t shell_topology_size_ = 0;         ///< length of /topology/shell_connectivity (Mixed)
-  // This rank's rows: owned nodes, its joints, its beams and shells, and its part of the shell
-  // connectivity (the state vectors' rows are io_detail::StateRows).
-  struct RowsImpl;
-  std::unique_ptr<RowsImpl> rows_;
-  std::vector<int> local_beams_, local_shells_;  ///< local element indices, in row order
+  std::unique_ptr<std::vector<io_detail::ElementGrid>> grids_;  ///< what the elements draw
+  std::unique_ptr<io_detail::ResultsParts> parts_file_;         ///< HDF5 rows (if hdf5)
+  std::unique_ptr<io_detail::XdmfIndex> xdmf_;                  ///< the index (if hdf5)
+  std::unique_ptr<io_detail::SensorCsv> csv_;                   ///< the sensors (rank 0)
 };
 
 }  // namespace alphaflex

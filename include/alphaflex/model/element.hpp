@@ -22,6 +22,25 @@ struct LocalState {
   double load_factor = 1.0;
 };
 
+/// The shape of the cell an element adds to the results' mesh (XDMF topology).
+enum class CellShape { none, line, triangle, quadrilateral };
+
+/// An element's cell in the results: its shape and its corners, as positions in the element's
+/// node list, in the cell's order (a line from the first to the second; a face counter-clockwise
+/// about its normal, as XDMF and VTK expect).
+struct OutputCell {
+  CellShape shape = CellShape::none;
+  std::vector<int> corners;
+};
+
+/// A named result field of an element and its number of components (1: a scalar).
+struct CellField {
+  std::string name;
+  int components = 1;
+  bool operator==(const CellField& o) const { return name == o.name && components == o.components; }
+  bool operator!=(const CellField& o) const { return !(*this == o); }
+};
+
 struct LocalResidual {
   Eigen::VectorXd r;
   Eigen::MatrixXd K, C, M;
@@ -41,11 +60,27 @@ class Element {
   /// Adds this element's r (and K, C, M if `tangent`) into `out`, which the caller has reset.
   virtual void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const = 0;
 
-  /// Names of the element's result fields (a beam: section forces and strains), for sensors and
-  /// the HDF5/XDMF cell data; empty if it has none.
-  virtual std::vector<std::string> output_names() const { return {}; }
-  /// Their values at state `s` (one per name).
+  // ---- Capabilities: what the results and the studies ask of an element (none of them tests an
+  // element's type, so a new element type is drawn, written and measured through these alone).
+
+  /// The kind of structure the element is part of: "beam", "shell", …; nullptr for elements that
+  /// store no strain (rigid bodies, point masses, loads). A scene block of such elements is a
+  /// flexible part (study/strain_energy.hpp), and its cells are drawn in the results' grid of that
+  /// structure (io/results_writer.hpp: grid "beams", datasets "beam_<field>").
+  virtual const char* structure() const { return nullptr; }
+  /// The cell it adds to the results' mesh, with its corners in the cell's node order.
+  virtual OutputCell output_cell() const { return {}; }
+  /// Its result fields (constant over its cell: cell data), in the order of output(); empty if it
+  /// has none.
+  virtual std::vector<CellField> cell_fields() const { return {}; }
+  /// Their values at state `s`: the components of every field, field after field.
   virtual void output(const LocalState& /*s*/, Eigen::VectorXd& values) const { values.resize(0); }
+  /// One name per value of output(), for sensors: a field's name, or NAME[k] (k from 0) for the
+  /// components of a field of several.
+  std::vector<std::string> output_names() const;
+  /// The elastic (strain) energy W (J) stored at the configuration q of its nodes; 0 for elements
+  /// that store none.
+  virtual double elastic_energy(const Eigen::VectorXd& /*q*/) const { return 0.0; }
 
   /// The same element on other indices of the same nodes: a subdomain's local numbering
   /// (partition/subdomain.hpp). An element holds no reference to the model, so the copy is whole.

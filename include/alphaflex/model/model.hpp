@@ -50,6 +50,9 @@ class Model {
   /// Offset of node `n` inside the local vector of `nodes`.
   int local_offset(const std::vector<int>& nodes, int n) const;
 
+  /// Element e's local (q, q̇, q̈, t) at the model-order state s (load factor 1).
+  LocalState local_state(const Element& e, const MechanicalState& s) const;
+
   /// Initial state from the nodes' q0, v0 (accelerations and multipliers zero).
   MechanicalState initial_state() const;
 

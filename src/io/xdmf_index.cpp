@@ -1,0 +1,123 @@
+#include "xdmf_index.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace alphaflex::io_detail {
+
+XdmfIndex::XdmfIndex(std::string path, std::string parts_name, size_t nodes, size_t joints,
+                     const std::vector<ElementGrid>& grids)
+    : path_(std::move(path)), parts_name_(std::move(parts_name)), nodes_(nodes), joints_(joints), grids_(grids) {}
+
+namespace {
+
+/// "cannot OPERATION: FILE (errno's text)".
+std::string failure(const std::string& operation, const std::string& file) {
+  std::string e = "cannot " + operation + ": " + file;
+  if (errno != 0) e += std::string(" (") + std::strerror(errno) + ")";
+  return e;
+}
+
+/// XDMF's attribute type of a field of `components` values per cell.
+const char* attribute_type(int components) { return components == 1 ? "Scalar" : components == 3 ? "Vector" : "Matrix"; }
+
+}  // namespace
+
+std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
+  const size_t nn = nodes_, nj = joints_;
+  // Every step refers to its own part: the part's topology and the step's group.
+  auto in_part = [&](size_t s) { return parts_name_ + "/" + part_file(steps[s].part); };
+  const std::string tmp = path_ + ".tmp";
+  errno = 0;
+  std::ofstream x(tmp);
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n";
+  auto item = [&](size_t s, const std::string& set, size_t rows, int cols) {
+    x << "      <DataItem Dimensions=\"" << rows;
+    if (cols > 1) x << " " << cols;
+    x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << in_part(s) << ":/" << steps[s].group << "/" << set
+      << "</DataItem>\n";
+  };
+  auto grid = [&](const char* name, size_t n, const char* topo, const char* geom,
+                  std::initializer_list<std::pair<const char*, const char*>> attrs) {
+    x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < steps.size(); ++s) {
+      x << "   <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n    <Time Value=\"" << steps[s].time << "\"/>\n"
+        << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\">\n"
+        << "      <DataItem Dimensions=\"" << n << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << in_part(s)
+        << ":/topology/" << topo << "</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
+      item(s, geom, n, 3);
+      x << "    </Geometry>\n";
+      for (const auto& [aname, set] : attrs) {
+        const std::string name = set;
+        const bool scalar = name == "node_angle", quaternion = name == "node_quaternion";
+        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\""
+          << (scalar ? "Scalar" : quaternion ? "Matrix" : "Vector") << "\" Center=\"Node\">\n";
+        item(s, set, n, scalar ? 1 : quaternion ? 4 : 3);
+        x << "    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  };
+  grid("bodies", nn, "nodes", "node_position",
+       {{"displacement", "node_displacement"}, {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"},
+        {"angle", "node_angle"}, {"axis", "node_axis"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"},
+        {"quaternion", "node_quaternion"}});
+  // An element grid per output step: its topology, the nodes' positions and motion as point data,
+  // the elements' results as cell data. Line segments (beams) carry the node axes 2 and 3 (the
+  // section axes), faces (shells) the accelerations.
+  for (const ElementGrid& g : grids_) {
+    if (g.elements.empty()) continue;
+    const size_t nc = g.elements.size();
+    const std::string name = g.grid();
+    using Pairs = std::vector<std::pair<const char*, const char*>>;
+    const Pairs vectors = g.lines ? Pairs{{"displacement", "node_displacement"}, {"velocity", "node_velocity"},
+                                          {"axis2", "node_axis2"}, {"axis3", "node_axis3"}}
+                                  : Pairs{{"displacement", "node_displacement"}, {"velocity", "node_velocity"},
+                                          {"acceleration", "node_acceleration"}};
+    x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < steps.size(); ++s) {
+      x << "   <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n    <Time Value=\"" << steps[s].time << "\"/>\n";
+      if (g.lines)
+        x << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nc << "\" NodesPerElement=\"2\">\n"
+          << "      <DataItem Dimensions=\"" << nc << " 2\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">";
+      else
+        x << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << nc << "\">\n"
+          << "      <DataItem Dimensions=\"" << g.connectivity_size << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">";
+      x << in_part(s) << ":/topology/" << g.connectivity() << "</DataItem>\n    </Topology>\n"
+        << "    <Geometry GeometryType=\"XYZ\">\n";
+      item(s, "node_position", nn, 3);
+      x << "    </Geometry>\n";
+      for (const auto& [aname, set] : vectors) {
+        x << "    <Attribute Name=\"" << aname << "\" AttributeType=\"Vector\" Center=\"Node\">\n";
+        item(s, set, nn, 3);
+        x << "    </Attribute>\n";
+      }
+      x << "    <Attribute Name=\"quaternion\" AttributeType=\"Matrix\" Center=\"Node\">\n";
+      item(s, "node_quaternion", nn, 4);
+      x << "    </Attribute>\n";
+      for (const CellField& f : g.fields) {
+        x << "    <Attribute Name=\"" << f.name << "\" AttributeType=\"" << attribute_type(f.components)
+          << "\" Center=\"Cell\">\n";
+        item(s, g.dataset(f), nc, f.components);
+        x << "    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  }
+  if (nj > 0) grid("joints", nj, "joints", "joint_location", {{"force", "joint_force"}, {"moment", "joint_moment"}});
+  x << " </Domain>\n</Xdmf>\n";
+  x.close();
+  if (!x) return failure("write the XDMF index", tmp);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path_, ec);
+  if (ec) return failure("rename to " + path_, tmp);
+  return {};
+}
+
+}  // namespace alphaflex::io_detail
