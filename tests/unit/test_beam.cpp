@@ -57,26 +57,11 @@ VectorXd configuration(const Pose<double>& a, const Pose<double>& b) {
 }
 
 LocalState state(const VectorXd& q, const VectorXd& v = VectorXd::Zero(12), const VectorXd& qdd = VectorXd::Zero(12)) {
-  LocalState s;
-  s.q = q;
-  s.v = v;
-  s.qdd = qdd;
-  return s;
+  return testing::local_state(q, v, qdd);
 }
 
-VectorXd residual(const Element& e, const LocalState& s) {
-  LocalResidual out;
-  out.reset(12, false);
-  e.evaluate(s, out, false);
-  return out.r;
-}
-
-LocalResidual tangents(const Element& e, const LocalState& s) {
-  LocalResidual out;
-  out.reset(12, true);
-  e.evaluate(s, out, true);
-  return out;
-}
+using testing::element_residual;
+using testing::element_tangents;
 
 /// Central differences of r (test_support.hpp): on the group for q, h = 1e-6 L0 for translations
 /// and 1e-6 rad for rotations; h = 1e-6 on v and q̈ (vector spaces).
@@ -129,7 +114,7 @@ Chain cantilever(const BeamSection& section, double L, int n, const Vector3d& ax
   MatrixXd K = MatrixXd::Zero(N, N), M = MatrixXd::Zero(N, N);
   for (int e = 0; e < n; ++e) {
     const GeometricallyExactBeam beam("b", e, e + 1, section, nodes[e], nodes[e + 1], c.sec, c.sec, Vector3d::Zero());
-    const LocalResidual t = tangents(beam, state(configuration(nodes[e], nodes[e + 1])));
+    const LocalResidual t = element_tangents(beam, state(configuration(nodes[e], nodes[e + 1])));
     K.block(6 * e, 6 * e, 12, 12) += t.K;
     M.block(6 * e, 6 * e, 12, 12) += t.M;
   }
@@ -181,8 +166,8 @@ TEST(BeamTangents, MatchCentralDifferencesOnTheGroup) {
                                                    beam.section_offset(1)))
                               .norm();
       largest_turn = std::max(largest_turn, turn);
-      const LocalResidual t = tangents(beam, s);
-      ASSERT_LT((t.r - residual(beam, s)).norm(), 1e-12 * t.r.norm() + 1e-14);
+      const LocalResidual t = element_tangents(beam, s);
+      ASSERT_LT((t.r - element_residual(beam, s)).norm(), 1e-12 * t.r.norm() + 1e-14);
       const MatrixXd Kfd = central_differences(beam, s, Wrt::q, L);
       const MatrixXd Cfd = central_differences(beam, s, Wrt::v, L);
       const MatrixXd Mfd = central_differences(beam, s, Wrt::qdd, L);
@@ -244,7 +229,7 @@ TEST(BeamTangents, ExactAcrossTheSwitchesOfLogAndItsSeries) {
   for (double turn : {0.0, 1e-8, 0.00999, 0.0100001, 0.49, 0.51, 1.5707, 1.5709, 3.0}) {
     const Pose<double> bt{Vector3d(1.02, 0.05, -0.03), exp_so3<double>(Vector3d(turn * axis))};
     const LocalState s = state(configuration(a, turn == 0.0 ? b : bt));
-    const double e = relative_error(central_differences(beam, s, Wrt::q, 1.0), tangents(beam, s).K);
+    const double e = relative_error(central_differences(beam, s, Wrt::q, 1.0), element_tangents(beam, s).K);
     EXPECT_LT(e, 1e-8) << "turn " << turn;
     worst = std::max(worst, e);
   }
@@ -262,7 +247,7 @@ TEST(BeamInertia, RigidlySpinningElementGivesEulersEquation) {
     v.segment<3>(6 * i + 3) = sp.beam.section_offset(i) * W;  // node components of the same Ω̄
     qdd.segment<3>(6 * i + 3) = sp.beam.section_offset(i) * Wd;
   }
-  const VectorXd r = residual(sp.beam, state(configuration(sp.a, sp.b), v, qdd));
+  const VectorXd r = element_residual(sp.beam, state(configuration(sp.a, sp.b), v, qdd));
   const Matrix3d J = sp.beam.section().rotary_inertia();
   const Vector3d euler = 0.7 * (J * Wd + W.cross(J * W));
   for (int i = 0; i < 2; ++i)
@@ -277,7 +262,7 @@ TEST(BeamGravity, HalfTheWeightOnEachNodeTimesTheLoadFactor) {
   const Specimen sp = specimen(rng, unit_section(), 1.3, Vector3d(0.1, 0.2, -0.1), g);
   LocalState s = state(configuration(sp.a, sp.b));
   s.load_factor = 0.25;
-  const VectorXd r = residual(sp.beam, s);
+  const VectorXd r = element_residual(sp.beam, s);
   const Vector3d expected = -0.25 * 0.5 * 2.0 * sp.beam.reference_length() * g;
   for (int i = 0; i < 2; ++i) {
     EXPECT_LT((r.segment<3>(6 * i) - expected).norm(), 1e-13 * expected.norm());
@@ -312,7 +297,7 @@ TEST(BeamElasticForces, ClosedFormEqualsNestedADOfTheEnergy) {
     beam.elastic_forces(q, r_only);
     EXPECT_LT((r_only - r).norm(), 1e-14 * (r.norm() + K.norm())) << what;  // double and AD1 paths
     // evaluate() adds exactly these (no inertia or gravity here, at rest).
-    const LocalResidual t = tangents(beam, state(q));
+    const LocalResidual t = element_tangents(beam, state(q));
     EXPECT_EQ((t.K - K).norm(), 0.0) << what;
     const double eK = difference(K, K_ref);
     EXPECT_LT(eK, 1e-10) << what;
@@ -410,7 +395,7 @@ TEST(BeamStrain, IsObjective) {
     b.output(state(q), f);
     b.output(state(qm), fm);
     EXPECT_LT((fm - f).norm(), 1e-12 * f.norm());
-    const LocalResidual t = tangents(b, state(q)), tm = tangents(b, state(qm));
+    const LocalResidual t = element_tangents(b, state(q)), tm = element_tangents(b, state(qm));
     MatrixXd P = MatrixXd::Identity(12, 12);
     P.block<3, 3>(0, 0) = Q;
     P.block<3, 3>(6, 6) = Q;
@@ -537,7 +522,7 @@ TEST(BeamLargeRotation, EndMomentRollsTheCantileverIntoAnExactCircle) {
       VectorXd r = VectorXd::Zero(6 * (n + 1));
       MatrixXd K = MatrixXd::Zero(6 * (n + 1), 6 * (n + 1));
       for (int e = 0; e < n; ++e) {
-        const LocalResidual t = tangents(beams[e], state(q.segment<14>(7 * e)));
+        const LocalResidual t = element_tangents(beams[e], state(q.segment<14>(7 * e)));
         r.segment<12>(6 * e) += t.r;
         K.block<12, 12>(6 * e, 6 * e) += t.K;
       }

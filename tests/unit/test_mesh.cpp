@@ -31,22 +31,7 @@ struct TempDir : testing::TestOutputDir {
                       "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name()) {}
 };
 
-/// The InputError message of `f` (the test fails if it throws nothing or something else).
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an InputError: " << e.what();
-    return "";
-  } catch (...) {
-    ADD_FAILURE() << "not an InputError (not even a std::exception)";
-    return "";
-  }
-  ADD_FAILURE() << "no error";
-  return "";
-}
+using testing::input_error_of;
 
 #define EXPECT_HAS(text, fragment) EXPECT_NE(std::string(text).find(fragment), std::string::npos) << "message: " << (text)
 
@@ -244,7 +229,7 @@ TEST(MeshMsh, Msh2WithCurveInTwoGroupsIsRefused) {
   const std::string geo = dir.write("two.geo", std::string(kStraightGeo) + "Physical Curve(\"all\") = {1};\n");
   const std::string msh = dir.file("two.msh");
   write_msh_with_gmsh(geo, msh, 2.2, 1);
-  const std::string e = error_of([&] { read_mesh(msh, {}, "scene.yaml:3: mesh.file"); });
+  const std::string e = input_error_of([&] { read_mesh(msh, {}, "scene.yaml:3: mesh.file"); });
   EXPECT_HAS(e, "scene.yaml:3: mesh.file: mesh '" + msh + "'");
   EXPECT_HAS(e, "join the same gmsh nodes");
   EXPECT_HAS(e, "MSH 4");
@@ -293,7 +278,7 @@ TEST(MeshElementSize, BoundsTheElementLength) {
 TEST(MeshElementSize, NotHonouredByATransfiniteGeoIsAnError) {
   MeshOptions o;
   o.element_size = 0.01;
-  const std::string e = error_of([&] { read_mesh(mesh_path("cantilever.geo"), o, "ctx"); });
+  const std::string e = input_error_of([&] { read_mesh(mesh_path("cantilever.geo"), o, "ctx"); });
   EXPECT_HAS(e, "element_size = 0.01 m was not honoured");
   EXPECT_HAS(e, "Transfinite");
 }
@@ -346,23 +331,23 @@ TEST(MeshNames, NamedPointNotOnALineIsKept) {
 
 TEST(MeshErrors, MissingFileAndWrongExtension) {
   const TempDir dir;
-  std::string e = error_of([&] { read_mesh(dir.file("nope.geo"), {}, "scene.yaml:12: mesh.file"); });
+  std::string e = input_error_of([&] { read_mesh(dir.file("nope.geo"), {}, "scene.yaml:12: mesh.file"); });
   EXPECT_HAS(e, "scene.yaml:12: mesh.file: mesh '" + dir.file("nope.geo") + "': file not found");
-  e = error_of([&] { read_mesh(dir.write("beam.stl", "solid x\n"), {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(dir.write("beam.stl", "solid x\n"), {}, "ctx"); });
   EXPECT_HAS(e, "ctx: mesh '");
   EXPECT_HAS(e, "expected a gmsh file ending in .geo");
-  e = error_of([&] { read_mesh(dir.file(""), {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(dir.file(""), {}, "ctx"); });
   EXPECT_HAS(e, "expected a gmsh file ending in .geo");
 }
 
 TEST(MeshErrors, MalformedGeoThenGmshStillUsable) {
   const TempDir dir;
   const std::string bad = dir.write("bad.geo", "Point(1) = {0, 0, 0;\nLine(1) = {1, 2};\n");
-  std::string e = error_of([&] { read_mesh(bad, {}, "ctx"); });
+  std::string e = input_error_of([&] { read_mesh(bad, {}, "ctx"); });
   EXPECT_HAS(e, "ctx: mesh '" + bad + "': gmsh failed while reading the .geo (expected a valid gmsh geometry script)");
   EXPECT_HAS(e, "line 1: syntax error");
   const std::string unknown = dir.write("unknown.geo", "Point(1) = {0, 0, 0};\nPoint(2) = {x, 0, 0};\n");
-  e = error_of([&] { read_mesh(unknown, {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(unknown, {}, "ctx"); });
   EXPECT_HAS(e, "line 2: Unknown variable 'x'");
   // A failed read leaves gmsh usable (its session is finalized and started again).
   expect_straight_beam(read_mesh(mesh_path("cantilever.geo"), with_elements(2), "test"), "beam", "root", 1.0, 2);
@@ -376,17 +361,17 @@ TEST(MeshErrors, CorruptMsh) {
     good.assign(std::istreambuf_iterator<char>(in), {});
   }
   const std::string truncated = dir.write("truncated.msh", good.substr(0, good.find("$Nodes") + 20));
-  std::string e = error_of([&] { read_mesh(truncated, {}, "ctx"); });
+  std::string e = input_error_of([&] { read_mesh(truncated, {}, "ctx"); });
   EXPECT_HAS(e, "ctx: mesh '" + truncated + "': not a valid MSH file (checked before gmsh reads it): line 17: ");
   EXPECT_HAS(e, "the file is cut short, or the count is wrong");
   // Without its header gmsh would run the file as a .geo script: refused before.
-  e = error_of([&] { read_mesh(dir.write("text.msh", "hello world\n"), {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(dir.write("text.msh", "hello world\n"), {}, "ctx"); });
   EXPECT_HAS(e, "not a gmsh MSH file: expected it to start with $MeshFormat, found 'hello'");
-  e = error_of([&] { read_mesh(dir.write("empty.msh", ""), {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(dir.write("empty.msh", ""), {}, "ctx"); });
   EXPECT_HAS(e, "(the file is empty)");
   std::string garbled = good;
   garbled.replace(garbled.find("$Elements") + 10, 7, "x y z w");
-  e = error_of([&] { read_mesh(dir.write("garbled.msh", garbled), {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(dir.write("garbled.msh", garbled), {}, "ctx"); });
   EXPECT_HAS(e, "line 33: expected the number of element blocks (an integer), found 'x'");
 }
 
@@ -406,7 +391,7 @@ TEST(MeshErrors, MshCheckedBeforeGmsh) {
     return dir.write("damaged.msh", t.replace(at, from.size(), to));
   };
   auto expect = [&](const std::string& msh, const std::string& what) {
-    const std::string e = error_of([&] { read_mesh(msh, {}, "ctx"); });
+    const std::string e = input_error_of([&] { read_mesh(msh, {}, "ctx"); });
     EXPECT_HAS(e, "ctx: mesh '" + msh + "': not a valid MSH file (checked before gmsh reads it): line ");
     EXPECT_HAS(e, what);
   };
@@ -425,32 +410,32 @@ TEST(MeshErrors, MshCheckedBeforeGmsh) {
 TEST(MeshErrors, NoPhysicalGroups) {
   const TempDir dir;
   const std::string geo = dir.write("plain.geo", "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0};\nLine(1) = {1, 2};\n");
-  std::string e = error_of([&] { read_mesh(geo, {}, "ctx"); });
+  std::string e = input_error_of([&] { read_mesh(geo, {}, "ctx"); });
   EXPECT_HAS(e, "no physical groups of dimension 0, 1 or 2");
   EXPECT_HAS(e, "Physical Curve(\"name\")");
   EXPECT_HAS(e, "Physical Surface(\"name\")");
 }
 
 TEST(MeshErrors, Parameters) {
-  std::string e = error_of([&] { read_mesh(mesh_path("cantilever.geo"), with_parameters({{"N", 4}, {"length", 2}}), "ctx"); });
+  std::string e = input_error_of([&] { read_mesh(mesh_path("cantilever.geo"), with_parameters({{"N", 4}, {"length", 2}}), "ctx"); });
   EXPECT_HAS(e, "unknown parameters 'N', 'length': the .geo defines 'L', 'n'");
   EXPECT_HAS(e, "DefineConstant[ n = {16, Name \"n\"} ]");
 
   const TempDir dir;
   // Without a Name a DefineConstant is not a ONELAB parameter: it cannot be set from outside.
   const std::string plain = dir.write("plain.geo", std::string("DefineConstant[ m = 3 ];\n") + kStraightGeo);
-  e = error_of([&] { read_mesh(plain, with_parameters({{"m", 4}}), "ctx"); });
+  e = input_error_of([&] { read_mesh(plain, with_parameters({{"m", 4}}), "ctx"); });
   EXPECT_HAS(e, "unknown parameter 'm': the .geo defines no parameters");
   // The ONELAB name is the Name string, not the variable.
   const std::string path = dir.write("path.geo", std::string("DefineConstant[ n = {3, Name \"Mesh/n\"} ];\n") + kStraightGeo);
-  e = error_of([&] { read_mesh(path, with_parameters({{"n", 4}}), "ctx"); });
+  e = input_error_of([&] { read_mesh(path, with_parameters({{"n", 4}}), "ctx"); });
   EXPECT_HAS(e, "unknown parameter 'n': the .geo defines 'Mesh/n'");
   EXPECT_EQ(read_mesh(path, with_parameters({{"Mesh/n", 4}}), "ctx").parameters.at("Mesh/n"), 4.0);
   // A ReadOnly constant keeps its own value.
   const std::string fixed = dir.write("fixed.geo", std::string("DefineConstant[ n = {3, Name \"n\", ReadOnly 1} ];\n") + kStraightGeo);
-  e = error_of([&] { read_mesh(fixed, with_parameters({{"n", 4}}), "ctx"); });
+  e = input_error_of([&] { read_mesh(fixed, with_parameters({{"n", 4}}), "ctx"); });
   EXPECT_HAS(e, "parameter 'n' = 4 was not taken: the .geo keeps 3");
-  e = error_of([&] { read_mesh(mesh_path("cantilever.geo"), with_parameters({{"n", NAN}}), "ctx"); });
+  e = input_error_of([&] { read_mesh(mesh_path("cantilever.geo"), with_parameters({{"n", NAN}}), "ctx"); });
   EXPECT_HAS(e, "parameter 'n' = nan: expected a finite number");
 }
 
@@ -458,20 +443,20 @@ TEST(MeshErrors, OptionsThatDoNotFit) {
   MeshOptions o;
   o.elements_per_curve = 4;
   o.parameters["n"] = 4;
-  std::string e = error_of([&] { read_mesh(mesh_path("cantilever_n4.msh"), o, "ctx"); });
+  std::string e = input_error_of([&] { read_mesh(mesh_path("cantilever_n4.msh"), o, "ctx"); });
   EXPECT_HAS(e, "elements_per_curve, parameters: only for a .geo; a .msh is read as is, never re-meshed");
   o = {};
   o.element_size = 0.1;
-  e = error_of([&] { read_mesh(mesh_path("cantilever_n4.msh"), o, "ctx"); });
+  e = input_error_of([&] { read_mesh(mesh_path("cantilever_n4.msh"), o, "ctx"); });
   EXPECT_HAS(e, "element_size: only for a .geo");
   o.elements_per_curve = 3;
-  e = error_of([&] { read_mesh(mesh_path("cantilever.geo"), o, "ctx"); });
+  e = input_error_of([&] { read_mesh(mesh_path("cantilever.geo"), o, "ctx"); });
   EXPECT_HAS(e, "elements_per_curve and element_size exclude each other");
-  e = error_of([&] { read_mesh(mesh_path("cantilever.geo"), with_elements(-1), "ctx"); });
+  e = input_error_of([&] { read_mesh(mesh_path("cantilever.geo"), with_elements(-1), "ctx"); });
   EXPECT_HAS(e, "elements_per_curve = -1: expected a number > 0");
   o = {};
   o.element_size = -0.5;
-  e = error_of([&] { read_mesh(mesh_path("cantilever.geo"), o, "ctx"); });
+  e = input_error_of([&] { read_mesh(mesh_path("cantilever.geo"), o, "ctx"); });
   EXPECT_HAS(e, "element_size = -0.5: expected a length > 0");
 }
 
@@ -506,7 +491,7 @@ TEST(MeshErrors, DuplicateNames) {
   const TempDir dir;
   // Across dimensions in a .geo.
   const std::string geo = dir.write("dup.geo", std::string(kStraightGeo) + "Physical Curve(\"tip\") = {1};\n");
-  std::string e = error_of([&] { read_mesh(geo, {}, "ctx"); });
+  std::string e = input_error_of([&] { read_mesh(geo, {}, "ctx"); });
   EXPECT_HAS(e, "two physical groups are named 'tip'");
   // Within a dimension: a .msh may name two groups alike; a default name may collide too.
   std::string msh;
@@ -516,20 +501,20 @@ TEST(MeshErrors, DuplicateNames) {
   }
   std::string same = msh;
   same.replace(same.find("0 3 \"tip\""), 9, "0 3 \"root\"");
-  e = error_of([&] { read_mesh(dir.write("same.msh", same), {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(dir.write("same.msh", same), {}, "ctx"); });
   EXPECT_HAS(e, "two physical groups are named 'root'");
   std::string collide = msh;
   collide.replace(collide.find("0 3 \"tip\""), 9, "0 3 \"line_1\"");
   collide.replace(collide.find("1 1 \"beam\""), 10, "");
   collide.replace(collide.find("$PhysicalNames\n3"), 16, "$PhysicalNames\n2");
-  e = error_of([&] { read_mesh(dir.write("collide.msh", collide), {}, "ctx"); });
+  e = input_error_of([&] { read_mesh(dir.write("collide.msh", collide), {}, "ctx"); });
   EXPECT_HAS(e, "two physical groups are named 'line_1'");
 }
 
 TEST(MeshErrors, UnsupportedElementType) {
   const TempDir dir;
   const std::string geo = dir.write("o3.geo", std::string(kStraightGeo) + "Mesh.ElementOrder = 3;\n");
-  const std::string e = error_of([&] { read_mesh(geo, with_elements(2), "ctx"); });
+  const std::string e = input_error_of([&] { read_mesh(geo, with_elements(2), "ctx"); });
   EXPECT_HAS(e, "physical group 'beam' (dimension 1) holds element 3 of type 'Line 4' (gmsh type 26)");
   EXPECT_HAS(e, "expected 2-node lines (type 1) or 3-node lines (type 8");
 }

@@ -53,26 +53,11 @@ VectorXd local_q(const Vector3d& a, const Vector3d& b) {
 }
 
 LocalState state(const VectorXd& q, const VectorXd& v = VectorXd::Zero(6), const VectorXd& qdd = VectorXd::Zero(6)) {
-  LocalState s;
-  s.q = q;
-  s.v = v;
-  s.qdd = qdd;
-  return s;
+  return testing::local_state(q, v, qdd);
 }
 
-VectorXd residual(const Element& e, const LocalState& s) {
-  LocalResidual out;
-  out.reset(6, false);
-  e.evaluate(s, out, false);
-  return out.r;
-}
-
-LocalResidual tangents(const Element& e, const LocalState& s) {
-  LocalResidual out;
-  out.reset(6, true);
-  e.evaluate(s, out, true);
-  return out;
-}
+using testing::element_residual;
+using testing::element_tangents;
 
 /// Central differences of r with respect to q, q̇ or q̈ (vector spaces; test_support.hpp's step
 /// rule h = 1e-6 max(1, |x_j|)).
@@ -146,7 +131,7 @@ void energy_derivatives(const PlanarBeam& beam, const VectorXd& q, double& W, Ve
 }
 
 /// The elastic residual alone (no inertia, no gravity: q̈ = 0, g = 0 in the specimens using it).
-VectorXd elastic_residual(const PlanarBeam& beam, const VectorXd& q) { return residual(beam, state(q)); }
+VectorXd elastic_residual(const PlanarBeam& beam, const VectorXd& q) { return element_residual(beam, state(q)); }
 
 // ------------------------------------------------------------------ tangents
 
@@ -183,8 +168,8 @@ TEST(PlanarBeamTangents, MatchCentralDifferencesAtRandomDeformedStates) {
       }
       const double turn = s.q[5] + sp.beam.section_offset(1) - s.q[2] - sp.beam.section_offset(0);
       largest_turn = std::max(largest_turn, std::abs(turn));
-      const LocalResidual t = tangents(sp.beam, s);
-      ASSERT_LE((t.r - residual(sp.beam, s)).norm(), 1e-14 * t.r.norm());
+      const LocalResidual t = element_tangents(sp.beam, s);
+      ASSERT_LE((t.r - element_residual(sp.beam, s)).norm(), 1e-14 * t.r.norm());
       const MatrixXd Kfd = central_differences(sp.beam, s, Wrt::q);
       const MatrixXd Cfd = central_differences(sp.beam, s, Wrt::v);
       const MatrixXd Mfd = central_differences(sp.beam, s, Wrt::qdd);
@@ -233,7 +218,7 @@ TEST(PlanarBeamTangents, EqualAutomaticDifferentiationOfTheEnergyAcrossTheSeries
     VectorXd grad;
     MatrixXd hess;
     energy_derivatives(beam, q, W, grad, hess);
-    const LocalResidual t = tangents(beam, state(q));
+    const LocalResidual t = element_tangents(beam, state(q));
     EXPECT_NEAR(W, beam.elastic_energy(q), 1e-15 * W);
     const double er = (t.r - grad).norm() / grad.norm(), eK = relative_error(hess, t.K);
     const double efd = relative_error(central_differences(beam, state(q), Wrt::q), t.K);
@@ -292,7 +277,7 @@ TEST(PlanarBeamStrain, RigidMotionGivesZeroStrainAndForceAndIsObjective) {
       const VectorXd qm = moved(q, beta, Vector2d(uniform(rng, -3, 3), uniform(rng, -3, 3)));
       const Vector3d e = sp.beam.strain(q), em = sp.beam.strain(qm);
       ASSERT_GT(e.norm(), 1e-2);
-      const LocalResidual t = tangents(sp.beam, state(q)), tm = tangents(sp.beam, state(qm));
+      const LocalResidual t = element_tangents(sp.beam, state(q)), tm = element_tangents(sp.beam, state(qm));
       MatrixXd P = MatrixXd::Identity(6, 6);
       const Eigen::Matrix2d R = Eigen::Rotation2Dd(beta).toRotationMatrix();
       P.block<2, 2>(0, 0) = R;
@@ -446,7 +431,7 @@ TEST(PlanarBeamCantilever, HasNoShearLockingAndConvergesAsNToMinusTwo) {
     for (int e = 0; e < n; ++e) {
       const PlanarBeam beam("b", e, e + 1, EA, GA, EI, rho * A, rho * I, nodes[e], nodes[e + 1], psi, psi,
                             Vector2d(0.0, -9.81));
-      K.block(3 * e, 3 * e, 6, 6) += tangents(beam, state(local_q(nodes[e], nodes[e + 1]))).K;
+      K.block(3 * e, 3 * e, 6, 6) += element_tangents(beam, state(local_q(nodes[e], nodes[e + 1]))).K;
     }
     const MatrixXd Kr = K.bottomRightCorner(N - 3, N - 3);
     VectorXd f = VectorXd::Zero(N - 3);
@@ -498,7 +483,7 @@ TEST(PlanarBeamRollUp, EndMomentBendsTheCantileverIntoAnExactCircle) {
       VectorXd R = VectorXd::Zero(N);
       MatrixXd K = MatrixXd::Zero(N, N);
       for (int e = 0; e < n; ++e) {
-        const LocalResidual t = tangents(beams[static_cast<size_t>(e)], state(q.segment<6>(3 * e)));
+        const LocalResidual t = element_tangents(beams[static_cast<size_t>(e)], state(q.segment<6>(3 * e)));
         R.segment<6>(3 * e) += t.r;
         K.block<6, 6>(3 * e, 3 * e) += t.K;
       }
@@ -576,7 +561,7 @@ TEST(PlanarBeamSpatialBeam, SameStrainEnergyResidualAndTangentsInThePlane) {
       LocalResidual t3;
       t3.reset(12, true);
       spatial.evaluate(s3, t3, true);
-      const LocalResidual t = tangents(sp.beam, s);
+      const LocalResidual t = element_tangents(sp.beam, s);
       VectorXd r3(6);
       MatrixXd K3(6, 6), M3(6, 6), C3(6, 6);
       for (int i = 0; i < 6; ++i) {
@@ -614,7 +599,7 @@ TEST(PlanarBeamInertia, ConsistentMassAndHalfTheWeightOnEachNodeTimesTheLoadFact
   const double L0 = sp.beam.reference_length();
   LocalState s = state(local_q(sp.a, sp.b), VectorXd::Random(6), VectorXd::Random(6));
   s.load_factor = 0.25;
-  const LocalResidual t = tangents(sp.beam, s);
+  const LocalResidual t = element_tangents(sp.beam, s);
   MatrixXd M = MatrixXd::Zero(6, 6);
   const double mt = p.rhoA * L0 / 6.0, mr = p.rhoI * L0 / 6.0;
   for (int i = 0; i < 3; ++i) {

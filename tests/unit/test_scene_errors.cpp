@@ -24,24 +24,11 @@ joints:
   - {name: pin, type: revolute, body1: bar, point1: [-0.5, 0], body2: ground, point2: [0, 0]}
 )";
 
-/// The InputError message of `read` (a failure if it throws anything else or nothing).
-template <class Read>
-std::string input_error(Read read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "accepted";
-  return "";
-}
+using testing::input_error_of;
 
 /// The InputError message of reading (and starting, with stop_after_start) `yaml`.
 std::string error_of(const std::string& yaml) {
-  return input_error([&] {
+  return input_error_of([&] {
     Scene sc = read_scene_text(yaml, "scene.yaml");
     RunOptions o;
     o.write_results = false;
@@ -139,7 +126,7 @@ TEST(StudyErrors, MapAsKeyIsNamed) {
   std::ofstream(scene) << kPendulum;
   auto error = [&](const std::string& text, const std::vector<std::string>& set = {}) {
     std::ofstream(study) << text;
-    return input_error([&] { study::read_study(scene.string(), study.string(), set); });
+    return input_error_of([&] { study::read_study(scene.string(), study.string(), set); });
   };
   const std::string f = study.string();
   EXPECT_EQ(error("study:\n  ? {a: b}\n  : 1\n  h: [1e-3]\n"),

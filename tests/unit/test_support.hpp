@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the tests: run a scene in-process, read reference CSVs, fit slopes, a fresh
 // output directory, central differences.
+#include <gtest/gtest.h>
 #include <petscsys.h>
 #include <stdlib.h>
 
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "alphaflex/app/simulation.hpp"
+#include "alphaflex/core/error.hpp"
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/model/element.hpp"
 #include "alphaflex/model/node.hpp"
@@ -26,6 +28,48 @@
 namespace alphaflex::testing {
 
 inline std::string source_path(const std::string& rel) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/" + rel; }
+
+/// The InputError message of `f` (the test fails if `f` throws anything else, or nothing).
+inline std::string input_error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not an InputError: " << e.what();
+    return "";
+  } catch (...) {
+    ADD_FAILURE() << "not an InputError (not even a std::exception)";
+    return "";
+  }
+  ADD_FAILURE() << "accepted: no error";
+  return "";
+}
+
+/// An element's local state (q: configuration numbers, v and q̇̇ in the element's unknowns).
+inline LocalState local_state(const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& qdd) {
+  LocalState s;
+  s.q = q;
+  s.v = v;
+  s.qdd = qdd;
+  return s;
+}
+
+/// r = M q̈ − g of an element at a local state (no tangents).
+inline Eigen::VectorXd element_residual(const Element& e, const LocalState& s) {
+  LocalResidual out;
+  out.reset(static_cast<int>(s.v.size()), false);
+  e.evaluate(s, out, false);
+  return out.r;
+}
+
+/// r with its tangents K, C, M at a local state.
+inline LocalResidual element_tangents(const Element& e, const LocalState& s) {
+  LocalResidual out;
+  out.reset(static_cast<int>(s.v.size()), true);
+  e.evaluate(s, out, true);
+  return out;
+}
 
 /// Where a test writes its files: never the source tree or the working directory (a test's output
 /// once ended up committed). By default a fresh directory under the system's temporary directory,
