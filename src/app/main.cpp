@@ -26,6 +26,7 @@
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/mpi_singleton.hpp"
 #include "alphaflex/io/schema.hpp"
 #include "alphaflex/io/scene_modes.hpp"
 #include "alphaflex/study/study.hpp"
@@ -279,6 +280,7 @@ int main(int argc, char** argv) {
 
   int pargc = static_cast<int>(cl.petsc_argv.size()) - 1;
   char** pargv = cl.petsc_argv.data();
+  alphaflex::avoid_singleton_daemon();  // before MPI_Init: no orted for a one-rank run
   // SLEPc's initialization (it initializes PETSc): EPS and PEP refuse to run without it (modes).
   PetscCall(SlepcInitialize(&pargc, &pargv, nullptr, nullptr));
   int rank = 0, size = 1;

@@ -16,6 +16,7 @@
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
+#include "alphaflex/core/blas_library.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/fault_injection.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
@@ -147,6 +148,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     sum.mumps = solver.statistics();
     sum.workspace_retries = solver.workspace_retries();
     sum.workspace_percent = solver.workspace_percent();
+    sum.blas = describe(loaded_blas());
     // Peak resident memory of every rank (getrusage: the whole process, in KB on Linux).
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
@@ -480,6 +482,7 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << "  MUMPS               " << s.mumps.entries << " entries in the factors, " << s.mumps.flops
        << " flop per factorization, " << s.mumps.memory_sum_mb << " MB in all (" << s.mumps.memory_max_mb
        << " MB on the largest rank)\n";
+  if (!s.blas.empty()) os << "  BLAS                " << s.blas << "\n";
   if (s.workspace_retries > 0)
     os << "  MUMPS workspace     " << s.workspace_retries << " factorizations repeated with more workspace (ICNTL(14) now "
        << s.workspace_percent << " %)\n";

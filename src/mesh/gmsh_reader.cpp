@@ -1,4 +1,7 @@
-// gmsh → MeshData through the gmsh C++ API (Debian gmsh 4.8.4).
+// gmsh → MeshData through the gmsh C++ API (Debian gmsh 4.8.4). Built as a module of its own
+// (libalphaflex_gmsh.so, loaded by gmsh_loader.cpp only when a scene has a mesh): libgmsh pulls
+// OpenCASCADE, FLTK and ~70 other libraries, three quarters of the process' start-up CPU
+// (docs/performance.md, start-up).
 //
 // How gmsh 4.8.4 reports failures, and why errors are read from its logger instead of caught:
 // with General.AbortOnError >= 2 (gmsh::initialize sets 2) every gmsh error (Msg::Error) throws a
@@ -34,18 +37,6 @@
 #include "msh_check.hpp"
 
 namespace alphaflex {
-
-const MeshLineBlock* MeshData::find_line_block(const std::string& name) const {
-  for (const MeshLineBlock& b : line_blocks)
-    if (b.name == name) return &b;
-  return nullptr;
-}
-
-const MeshSurfaceBlock* MeshData::find_surface_block(const std::string& name) const {
-  for (const MeshSurfaceBlock& b : surface_blocks)
-    if (b.name == name) return &b;
-  return nullptr;
-}
 
 namespace {
 
@@ -544,8 +535,13 @@ class Reader {
 
 }  // namespace
 
-MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context) {
-  return Reader(path, options, context).read();
-}
-
 }  // namespace alphaflex
+
+// The entry point of the module (gmsh_loader.cpp loads it when a scene has a mesh): C linkage, so
+// dlsym finds it by this name. Errors leave as C++ exceptions (InputError), which cross the module
+// boundary like any shared object's (same compiler and libstdc++).
+extern "C" __attribute__((visibility("default"))) void alphaflex_gmsh_read_mesh(
+    const std::string& path, const alphaflex::MeshOptions& options, const std::string& context,
+    alphaflex::MeshData& mesh) {
+  mesh = alphaflex::Reader(path, options, context).read();
+}

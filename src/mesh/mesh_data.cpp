@@ -6,6 +6,19 @@
 #include "alphaflex/mesh/gmsh_reader.hpp"
 
 namespace alphaflex {
+
+const MeshLineBlock* MeshData::find_line_block(const std::string& name) const {
+  for (const MeshLineBlock& b : line_blocks)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
+const MeshSurfaceBlock* MeshData::find_surface_block(const std::string& name) const {
+  for (const MeshSurfaceBlock& b : surface_blocks)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
 namespace {
 
 class Writer {

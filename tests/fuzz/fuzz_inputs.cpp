@@ -53,6 +53,7 @@
 
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/mpi_singleton.hpp"
 #include "alphaflex/io/scene.hpp"
 #include "alphaflex/study/study_spec.hpp"
 #include "mutator.hpp"
@@ -526,6 +527,7 @@ int main(int argc, char** argv) {
   PetscCall(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr));
   int pargc = 1;
   char** pargv = argv;
+  alphaflex::avoid_singleton_daemon();  // before MPI_Init: no orted when run without mpirun
   PetscCall(PetscInitialize(&pargc, &pargv, nullptr, nullptr));
   int status = 0;
   {

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include "alphaflex/core/mpi_singleton.hpp"
+
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
+  alphaflex::avoid_singleton_daemon();  // before MPI_Init: no orted when run without mpirun
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   int rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);

@@ -2,8 +2,11 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include "alphaflex/core/mpi_singleton.hpp"
+
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
+  alphaflex::avoid_singleton_daemon();  // before MPI_Init: no orted when run without mpirun
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   const int result = RUN_ALL_TESTS();
   PetscCall(PetscFinalize());

@@ -60,6 +60,7 @@ struct RunSummary {
   std::vector<int> unknowns_per_rank, ghosts_per_rank;  ///< owned unknowns, ghost nodes
   FactorStatistics mumps;                  ///< of the last factorization
   int workspace_retries = 0, workspace_percent = 0;  ///< MUMPS refactorizations with more workspace, ICNTL(14) now
+  std::string blas;  ///< the BLAS (and LAPACK) the dense kernels ran on, found at run time (core/blas_library.hpp)
   double peak_memory_mb = 0.0, peak_memory_max_mb = 0.0;  ///< peak resident set: sum, largest rank
   /// Resident memory that reading the scene (and its mesh) and building its whole model took on
   /// the largest rank: the part every rank holds whatever their number (set by the command).

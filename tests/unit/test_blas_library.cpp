@@ -1,0 +1,78 @@
+// core/blas_library.hpp: the BLAS the run summary names is the one this process really calls.
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "alphaflex/core/blas_library.hpp"
+#include "alphaflex/core/mpi_singleton.hpp"
+
+namespace {
+
+// dgemm_ as the process resolves it, called through the pointer the lookup returns: C = A·B for
+// 2×2 column-major matrices. A BLAS the test names but the process did not load would fail here.
+TEST(BlasLibrary, NamesTheObjectThatComputes) {
+  const alphaflex::BlasLibrary b = alphaflex::loaded_blas();
+  ASSERT_FALSE(b.blas.empty()) << "PETSc and MUMPS link a BLAS: dgemm_ must resolve";
+  EXPECT_TRUE(std::filesystem::path(b.blas).is_absolute());
+  EXPECT_TRUE(std::filesystem::exists(b.blas)) << b.blas;
+  EXPECT_NE(b.blas.find("blas"), std::string::npos) << b.blas;
+  EXPECT_FALSE(b.lapack.empty());
+
+  using dgemm_t = void (*)(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
+                           const int*, const double*, const int*, const double*, double*, const int*);
+  auto dgemm = reinterpret_cast<dgemm_t>(dlsym(RTLD_DEFAULT, "dgemm_"));
+  ASSERT_NE(dgemm, nullptr);
+  Dl_info info;
+  ASSERT_NE(dladdr(reinterpret_cast<void*>(dgemm), &info), 0);
+  EXPECT_EQ(std::filesystem::canonical(info.dli_fname).string(), b.blas);
+  const double a[4] = {1, 2, 3, 4}, bm[4] = {5, 6, 7, 8}, one = 1, zero = 0;  // A = [1 3; 2 4], B = [5 7; 6 8]
+  double c[4] = {0, 0, 0, 0};
+  const int n = 2;
+  dgemm("N", "N", &n, &n, &n, &one, a, &n, bm, &n, &zero, c, &n);
+  EXPECT_DOUBLE_EQ(c[0], 23);  // 1·5 + 3·6
+  EXPECT_DOUBLE_EQ(c[1], 34);  // 2·5 + 4·6
+  EXPECT_DOUBLE_EQ(c[2], 31);  // 1·7 + 3·8
+  EXPECT_DOUBLE_EQ(c[3], 46);  // 2·7 + 4·8
+
+  const std::string line = alphaflex::describe(b);
+  EXPECT_EQ(line.rfind(b.blas, 0), 0u) << line;
+  if (!b.openblas.empty()) {  // OpenBLAS: its configuration, kernel and threads are named
+    EXPECT_FALSE(b.kernel.empty());
+    EXPECT_GE(b.threads, 1);
+    EXPECT_NE(line.find("kernel " + b.kernel), std::string::npos) << line;
+  }
+}
+
+// The daemon-free singleton is asked for only when no launcher started the process, and never
+// over the user's own setting.
+TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
+  const char* key = "OMPI_MCA_ess_singleton_isolated";
+  const char* saved = std::getenv(key);
+  const std::string saved_value = saved ? saved : "";
+  const char* launcher = std::getenv("OMPI_COMM_WORLD_SIZE");
+  const std::string launcher_value = launcher ? launcher : "";
+
+  unsetenv(key);
+  setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
+  alphaflex::avoid_singleton_daemon();
+  EXPECT_EQ(std::getenv(key), nullptr) << "set under a launcher";
+
+  unsetenv("OMPI_COMM_WORLD_SIZE");
+  const bool other_launcher = std::getenv("PMIX_RANK") || std::getenv("PMI_RANK") || std::getenv("PMI_SIZE");
+  alphaflex::avoid_singleton_daemon();
+  if (!other_launcher) {
+    ASSERT_NE(std::getenv(key), nullptr);
+    EXPECT_STREQ(std::getenv(key), "1");
+  }
+  setenv(key, "0", 1);
+  alphaflex::avoid_singleton_daemon();
+  EXPECT_STREQ(std::getenv(key), "0") << "the user's setting must win";
+
+  if (saved) setenv(key, saved_value.c_str(), 1); else unsetenv(key);
+  if (launcher) setenv("OMPI_COMM_WORLD_SIZE", launcher_value.c_str(), 1);
+}
+
+}  // namespace
