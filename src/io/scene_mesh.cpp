@@ -125,6 +125,8 @@ MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
     if (!p.IsMap()) rd.fail(p, "mesh.parameters", "expected a map name: value (DefineConstant names of the .geo)");
     for (const auto& kv : p) {
       const std::string k = rd.key_name(kv.first, "mesh.parameters");
+      // yaml-cpp keeps both entries of a repeated key; the last would silently win here.
+      if (opt.parameters.count(k)) rd.fail(kv.first, "mesh.parameters." + k, "given twice");
       opt.parameters[k] = rd.number(kv.second, "mesh.parameters." + k);
     }
   }

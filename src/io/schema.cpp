@@ -1,5 +1,7 @@
 #include "alphaflex/io/schema.hpp"
 
+#include <set>
+
 #include <algorithm>
 #include <map>
 
@@ -295,8 +297,11 @@ TimeFunctionPtr Reader::function(const YAML::Node& n, const std::string& key) co
 void Reader::read_parameters(const YAML::Node& p) {
   if (!p) return;
   if (!p.IsMap()) fail(p, "parameters", "expected a map name: value");
+  std::set<std::string> seen;
   for (const auto& kv : p) {
     const std::string name = key_name(kv.first, "parameters");
+    // yaml-cpp keeps both entries of a repeated key; the last would silently win here.
+    if (!seen.insert(name).second) fail(kv.first, "parameters." + name, "given twice");
     scope_[name] = number(kv.second, "parameters." + name);
   }
 }

@@ -48,6 +48,17 @@ TEST(SceneErrors, MapAsKeyIsNamed) {
 }
 
 // A name is quoted in every later message about its item: a 5000-character one is refused first.
+// A name given twice in `parameters` or `mesh.parameters` (issue 24, defect 5): yaml-cpp keeps both
+// entries and the last one won silently, while every other map refuses a repeated key.
+TEST(SceneErrors, RepeatedParameterNamesAreRefused) {
+  EXPECT_EQ(error_of("parameters: {L: 1, L: 2}\n" + kPendulum), "scene.yaml:1: parameters.L: given twice");
+  const std::string meshed = "dimension: 3\nmesh: {file: " + testing::source_path("meshes/cantilever.geo") +
+                             ", parameters: {L: 1, L: 2}}\n"
+                             "beams: [{name: b, group: beam, orientation: [0, 1, 0], section: {EA: 1, GA2: 1, GA3: 1,"
+                             " GJ: 1, EI2: 1, EI3: 1, rhoA: 1, rhoI2: 1, rhoI3: 1}}]\n";
+  EXPECT_EQ(error_of(meshed), "scene.yaml:2: mesh.parameters.L: given twice");
+}
+
 TEST(SceneErrors, OverlongStringIsRefusedNotQuoted) {
   const std::string long_name(5000, 'x');
   std::string yaml = kPendulum;
