@@ -25,11 +25,14 @@ import numpy as np
 __all__ = ["load_summary", "load_sensors", "Results", "Study", "load_study"]
 
 
-def load_summary(path):
+def load_summary(path, name=None):
     """The summary of a run (`alphaflex run`: OUTDIR/NAME.summary.json) or of `alphaflex modes`
     (OUTDIR/NAME_modes.summary.json) as a dict. `path` is the JSON file, or an output directory
-    that holds exactly one run summary."""
-    if os.path.isdir(path):
+    with `name` (the scene's name: its `name` key, else its file name without .yaml), or an output
+    directory that holds exactly one run summary."""
+    if os.path.isdir(path) and name is not None:
+        path = os.path.join(path, name + ".summary.json")
+    elif os.path.isdir(path):
         found = sorted(p for p in glob.glob(os.path.join(path, "*.summary.json"))
                        if not p.endswith("_modes.summary.json"))
         if not found:

@@ -14,7 +14,6 @@ Writes next to the CSV, by the study's mode:
   blow_up      NAME_blow_up.png         growth of the multipliers' second difference vs the predicted roots
   fidelity     NAME_fidelity.png        sensor differences vs CPU time, strain-energy shares
 """
-import csv
 import math
 import os
 import sys
@@ -24,22 +23,16 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+import alphaflex_results as ar  # noqa: E402
+
 MARKERS = "osD^v<>ph*"
 
 
 def read(path):
-    comments, rows = [], []
-    with open(path) as fh:
-        lines = [ln for ln in fh]
-    body = []
-    for ln in lines:
-        if ln.startswith("#"):
-            comments.append(ln[1:].strip())
-        else:
-            body.append(ln)
-    for r in csv.DictReader(body):
-        rows.append(r)
-    return comments, rows
+    """The '#' comments and the rows (dicts of strings) of a study CSV (python/alphaflex_results.py)."""
+    study = ar.load_study(path)
+    return study.comments, study.rows
 
 
 def f(x):
@@ -261,8 +254,7 @@ def read_history(base):
     path = base + "_history.csv"
     if not os.path.exists(path):
         return None
-    with open(path) as fh:
-        return list(csv.DictReader(fh))
+    return ar.load_study(path).rows
 
 
 def oscillation(csv_path, comments, rows, base):
@@ -372,8 +364,7 @@ def fidelity(csv_path, comments, rows, base):
     ax[0].legend(fontsize=7)
     epath = base + "_energy.csv"
     if os.path.exists(epath):
-        with open(epath) as fh:
-            er = list(csv.DictReader(fh))
+        er = ar.load_study(epath).rows
         variants = labels_in_order([{"label": r["variant"]} for r in er])
         parts = labels_in_order([{"label": r["part"]} for r in er])
         bottom = np.zeros(len(variants))
