@@ -214,7 +214,7 @@ def convergence(csv_path, comments, rows, base):
             if fit["slope"] and fit["at_floor"] == "0":
                 text = f"slope {f(fit['slope']):.2f}"
             elif fit["slope"]:
-                text = f"slope {f(fit['slope']):.2f} above the floor at {f(fit['floor']):.1e}"
+                text = f"slope {f(fit['slope']):.2f} for h > {f(fit['h_floor']):g}; below, the errors stop decreasing"
             else:
                 text = "no order: " + fit["meaning"].replace("none: ", "")
             ax.loglog(*zip(*sorted(pts)), label="\n".join(textwrap.wrap(f"{lab} ({text})", 48)), **style(i, False))

@@ -86,10 +86,10 @@ std::string SlopeFit::describe() const {
   if (roundoff) return "none: errors at round-off (<= " + g(floor) + ")";
   if (!std::isnan(rising))
     return "none: errors do not decrease as h decreases (least-squares slope " + g(rising) + ")" +
-           (at_floor ? "; below h = " + g(h_floor) + " they level off at " + g(floor) : std::string());
+           (at_floor ? "; for h <= " + g(h_floor) + " they stop decreasing (at " + g(floor) + ")" : std::string());
   if (at_floor == 0) return std::isnan(slope) ? "none: fewer than two errors" : slope_text;
-  const std::string level = "errors level off at " + g(floor) + " for h <= " + g(h_floor) +
-                            " (the reference's accuracy or round-off)";
+  const std::string level = "for h <= " + g(h_floor) + " the errors stop decreasing (at " + g(floor) +
+                            "): round-off, the reference's accuracy or an error that h does not reduce";
   if (std::isnan(slope)) return "none: " + level;
   return std::string(slope_text) + " over the " + std::to_string(points) + " larger h; " + level;
 }

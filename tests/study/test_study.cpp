@@ -67,7 +67,7 @@ TEST(StudyMeasures, SlopeThroughRoundoffOrAFloorIsNotReportedAsAnOrder) {
   EXPECT_NEAR(f.slope, loglog_slope({8e-3, 4e-3, 2e-3, 1e-3}, {6.4e-5, 1.6e-5, 4e-6, 1.1e-6}), 1e-13);  // summed in another order
   EXPECT_DOUBLE_EQ(f.floor, 1.0e-6);
   EXPECT_DOUBLE_EQ(f.h_floor, 5e-4);
-  EXPECT_NE(f.describe().find("level off at 1e-06 for h <= 0.0005"), std::string::npos) << f.describe();
+  EXPECT_NE(f.describe().find("for h <= 0.0005 the errors stop decreasing (at 1e-06)"), std::string::npos) << f.describe();
 
   const SlopeFit r = fit_convergence(h, roundoff);
   EXPECT_TRUE(r.roundoff);
