@@ -113,13 +113,12 @@ def place_camera(view, b, mode):
     view.ResetCamera(b[0] - pad, b[1] + pad, b[2] - pad, b[3] + pad, b[4] - pad, b[5] + pad)
     if view.CameraParallelProjection:
         # ResetCamera fits the bounding sphere; the box itself, seen square on, fills more: its
-        # extents across and up the picture, with a margin of 6 %.
+        # extents across and up the picture, with a margin of 12 %.
         across, up_axis = {"xy": (0, 1), "xz": (0, 2), "yz": (1, 2)}[mode]
         aspect = view.ViewSize[0] / max(1, view.ViewSize[1])
-        half = max(size[up_axis] / 2, size[across] / 2 / aspect) * 1.06
+        half = max(size[up_axis] / 2, size[across] / 2 / aspect) * 1.12
         view.CameraParallelScale = half if half > 0 else diag / 2
-    else:
-        pv.GetActiveCamera().Dolly(1.15)  # the bounding sphere leaves room to spare around a box
+
 
 
 def main():
