@@ -126,20 +126,11 @@ std::string modes_json(const Scene& scene, const ModalRunSummary& s) {
     return list;
   };
   const ModalResult& r = s.result;
-  json j;
-  j["command"] = "modes";
-  j["scene"] = scene.name;
-  j["file"] = scene.file;
-  j["state"] = s.state;
-  j["time"] = s.time;
-  j["load_factor"] = s.load_factor;
-  j["frame"] = s.frame;
-  j["damped"] = r.damped;
-  j["unknowns"] = s.unknowns;
-  j["coordinates"] = s.coordinates;
-  j["multipliers"] = s.multipliers;
-  j["ranks"] = s.ranks;
-  j["parts"] = r.parts;
+  json j = {{"command", "modes"},  {"scene", scene.name},   {"file", scene.file},
+            {"state", s.state},     {"time", s.time},        {"load_factor", s.load_factor},
+            {"frame", s.frame},     {"damped", r.damped},    {"unknowns", s.unknowns},
+            {"coordinates", s.coordinates}, {"multipliers", s.multipliers}, {"ranks", s.ranks},
+            {"parts", r.parts}};
   j["modes"] = modes(r);
   j["rigid_body_modes"] = r.rigid_body_modes;
   j["eigensolver_iterations"] = r.iterations;
