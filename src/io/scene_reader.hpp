@@ -1,7 +1,8 @@
 #pragma once
-// Private to the io module: the scene builder (named markers, mesh groups, body references) and
-// the type registries shared by the planar (scene.cpp) and spatial (scene_spatial.cpp) parts of
-// the reader. The reading context itself (input::Reader, schemas) is io/schema.hpp.
+// Private to the io module: the scene builder (named markers, mesh groups, mesh blocks, body
+// references) and the type registries that the section reader (scene.cpp, scene_mesh.cpp) looks
+// types up in and the files of types/ register into. The reading context itself (input::Reader,
+// Section, schemas) is io/schema.hpp.
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -196,6 +197,13 @@ struct SceneTypes {
 };
 const SceneTypes& planar_types();   ///< types/register_all.cpp
 const SceneTypes& spatial_types();  ///< types/register_all.cpp
+
+/// The schema of a type: `name`, `type` and the type's own keys (types/common.cpp).
+Schema type_schema(const std::string& name, const std::string& type_doc, std::vector<Key> keys);
+/// `keys` followed by `more`.
+std::vector<Key> with(std::vector<Key> keys, std::vector<Key> more);
+/// The joint a sensor's `joint` key names (an error naming the key otherwise).
+int sensor_joint(const Item& it);
 
 /// The schemas of the scene's sections (top level, solver, output, mesh, ...) and time functions.
 std::vector<const Schema*> section_schemas();

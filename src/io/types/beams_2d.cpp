@@ -19,7 +19,7 @@ const Schema& planar_section_schema() {
 }
 
 void read_beam_block_2d(const Item& it) {
-  const MeshLineBlock& block = line_group(it);
+  const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
   // Planar section: EA, GA (in-plane shear), EI (bending in the plane), rhoA, rhoI; or a material
   // and a shape whose axis 3 is z (the section's in-plane properties GA2, EI3, rhoI3).
   const YAML::Node sn = it.keys.node("section");

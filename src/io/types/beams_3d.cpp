@@ -40,7 +40,7 @@ const Schema& properties_schema() {
 
 void read_beam_block_3d(const Item& it) {
   const Section& k = it.keys;
-  const MeshLineBlock& block = line_group(it);
+  const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
   const BeamSection section = read_beam_section(it.rd, k.node("section"), it.at("section"));
   const Eigen::Vector3d orient = k.direction("orientation");
   const MeshData& mesh = it.sb.blocks.mesh;

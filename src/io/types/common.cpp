@@ -22,6 +22,14 @@ std::vector<int> node_list(int a, int b) {
   return v;
 }
 
+const std::array<std::pair<const char*, Sensor::Kind>, 4>& point_sensor_kinds() {
+  static const std::array<std::pair<const char*, Sensor::Kind>, 4> kinds{{{"point_position", Sensor::Kind::PointPosition},
+                                                                           {"point_displacement", Sensor::Kind::PointDisplacement},
+                                                                           {"point_velocity", Sensor::Kind::PointVelocity},
+                                                                           {"point_acceleration", Sensor::Kind::PointAcceleration}}};
+  return kinds;
+}
+
 int sensor_joint(const Item& it) {
   const std::string jn = it.keys.text("joint");
   const int c = it.model.find_constraint(jn);
@@ -109,22 +117,6 @@ int block_node(const Item& it, int m, NodeKind kind, const Eigen::VectorXd& q0, 
   nd.v0 = v0;
   b.node_of[i] = it.model.add_node(nd);
   return b.node_of[i];
-}
-
-const MeshLineBlock& line_group(const Item& it) {
-  const MeshData& mesh = it.sb.blocks.mesh;
-  const std::string group = it.keys.text("group");
-  const MeshLineBlock* block = mesh.find_line_block(group);
-  if (!block) {
-    std::string known;
-    for (const auto& lb : mesh.line_blocks) known += (known.empty() ? "" : ", ") + lb.name;
-    it.rd.fail(it.keys.node("group"), it.at("group"),
-               "mesh '" + mesh.file + "' has no physical curve group '" + group + "' (its curve groups: " +
-                   (known.empty() ? "none" : known) + ")");
-  }
-  if (!it.sb.blocks.groups_used.insert(group).second)
-    it.rd.fail(it.keys.node("group"), it.at("group"), "group '" + group + "' is used by another beam already");
-  return *block;
 }
 
 }  // namespace alphaflex::scene_detail

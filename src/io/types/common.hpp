@@ -4,7 +4,8 @@
 // and constructor with one function `void register_FILE(SceneTypes&)`; register_all.cpp lists
 // those functions, one line each (PETSc's TSRegisterAll). Here: the schema of a type, and the keys
 // and readings that several types use (two-point planar joints, spatial body references,
-// rotations, vectors of time functions, the nodes of mesh blocks).
+// rotations, vectors of time functions, the nodes of mesh blocks). type_schema, with and
+// sensor_joint are declared in scene_reader.hpp.
 #include <array>
 #include <string>
 #include <vector>
@@ -16,14 +17,10 @@
 
 namespace alphaflex::scene_detail {
 
-/// The schema of a type: `name`, `type` and the type's own keys.
-Schema type_schema(const std::string& name, const std::string& type_doc, std::vector<Key> keys);
-/// `keys` followed by `more`.
-std::vector<Key> with(std::vector<Key> keys, std::vector<Key> more);
 /// The nodes of a two-body item (−1, the ground, left out).
 std::vector<int> node_list(int a, int b);
-/// The joint a sensor's `joint` key names (an error naming the key otherwise).
-int sensor_joint(const Item& it);
+/// The point sensors' type names and the quantity each reads (m, m, m/s, m/s²), in both dimensions.
+const std::array<std::pair<const char*, Sensor::Kind>, 4>& point_sensor_kinds();
 
 // ---- planar two-point joints (revolute, fixed, point_on_line, prismatic) ------------------------
 
@@ -66,9 +63,23 @@ std::array<TimeFunctionPtr, 3> vector_function(const Item& it, const char* key, 
 /// The model node of mesh node `m` of the block being read: made on first use (named after its
 /// mesh point, else BLOCK:TAG) with the initial state (q0, v0), shared by the blocks that meet there.
 int block_node(const Item& it, int m, NodeKind kind, const Eigen::VectorXd& q0, const Eigen::VectorXd& v0);
-/// The mesh's line block named by the item's `group`, or a clear error listing the curve groups;
-/// the group is then used (one block per group).
-const MeshLineBlock& line_group(const Item& it);
+/// The block of `blocks` (the mesh's line or surface blocks) named by the item's `group`, or a
+/// clear error listing them ("curve", "surface"); the group is then used (one block per group,
+/// `users`: "beam", "beam or shell").
+template <class Block>
+const Block& mesh_block(const Item& it, const std::vector<Block>& blocks, const char* kind, const char* users) {
+  const std::string group = it.keys.text("group");
+  for (const Block& b : blocks)
+    if (b.name == group) {
+      if (!it.sb.blocks.groups_used.insert(group).second)
+        it.rd.fail(it.keys.node("group"), it.at("group"), "group '" + group + "' is used by another " + users + " already");
+      return b;
+    }
+  std::string known;
+  for (const Block& b : blocks) known += (known.empty() ? "" : ", ") + b.name;
+  it.rd.fail(it.keys.node("group"), it.at("group"), "mesh '" + it.sb.blocks.mesh.file + "' has no physical " + kind + " group '" + group +
+                                                        "' (its " + kind + " groups: " + (known.empty() ? "none" : known) + ")");
+}
 /// The beam section of `section`: a material and a shape, or the stiffness and inertia properties
 /// (types/beams_3d.cpp; the planar beams read a material section with it too).
 BeamSection read_beam_section(const Reader& rd, const YAML::Node& n, const std::string& key);

@@ -19,10 +19,7 @@ void read_point_sensor_2d(const Item& it, Sensor& sn, Sensor::Kind kind) {
 }  // namespace
 
 void register_point_sensors_2d(SceneTypes& t) {
-  const std::pair<const char*, Sensor::Kind> points[] = {
-      {"point_position", Sensor::Kind::PointPosition}, {"point_displacement", Sensor::Kind::PointDisplacement},
-      {"point_velocity", Sensor::Kind::PointVelocity}, {"point_acceleration", Sensor::Kind::PointAcceleration}};
-  for (const auto& [name, kind] : points)
+  for (const auto& [name, kind] : point_sensor_kinds())
     t.sensors.add(name, type_schema(std::string("sensors.2d.") + name, std::string("`") + name + "` of a body point, world frame", {
         {"body", KeyType::Text, "–", kRequired, "a body; not `ground`"},
         {"point", KeyType::Vec2, "m", "[0, 0]", "body frame relative to the centre of mass; [0, 0] for particles"},

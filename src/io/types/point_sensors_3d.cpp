@@ -37,10 +37,7 @@ void read_point_sensor_3d(const Item& it, Sensor& sn, Sensor::Kind kind) {
 }  // namespace
 
 void register_point_sensors_3d(SceneTypes& t) {
-  const std::pair<const char*, Sensor::Kind> points[] = {
-      {"point_position", Sensor::Kind::PointPosition}, {"point_displacement", Sensor::Kind::PointDisplacement},
-      {"point_velocity", Sensor::Kind::PointVelocity}, {"point_acceleration", Sensor::Kind::PointAcceleration}};
-  for (const auto& [name, kind] : points)
+  for (const auto& [name, kind] : point_sensor_kinds())
     t.sensors.add(name, type_schema(std::string("sensors.3d.") + name, std::string("`") + name + "` of a body point: world components, or in the frame of `relative_to`", {
         {"body", KeyType::Text, "–", kRequired + std::string(" (unless `marker`)"), "a body or beam/shell node; not `ground`"},
         {"point", KeyType::Vec3, "m", "[0, 0, 0]", "point of the body, body frame"},

@@ -1,47 +1,51 @@
 // Every type a scene can name, registered in the manner of PETSc's TSRegisterAll: each line below
-// names a file of this folder, FILE.cpp, whose function `void register_FILE(SceneTypes&)` adds the
-// name, schema and constructor of its type (or small family of types) to the registries of its
-// dimension. A new type is a new file and one line here (docs/architecture.md, worked example).
-// The order of the lines is the order of the registries' "expected one of …" messages.
+// names a function `void register_NAME(SceneTypes&)`, defined in the file of this folder that
+// reads the type (NAME.cpp; joint_reaction.cpp holds both dimensions' joint_reaction), which adds
+// the name, schema and constructor of its type (or small family of types) to the registries of
+// its dimension; the list declares the functions itself. A new type is a new file and one line here (docs/architecture.md, worked example).
+// The order of the lines is the order of the registries' "expected one of …" messages; every line
+// ends with a backslash, so a line added anywhere (last too) is the only line changed.
 //
 // An explicit list rather than self-registration by static objects: the types live in a static
 // library, whose linker drops objects that nothing references.
 #include "common.hpp"
 
 #define ALPHAFLEX_PLANAR_TYPES(X) \
-  X(rigid_body_2d)                \
-  X(particles_2d)                 \
-  X(revolute_2d)                  \
-  X(fixed_2d)                     \
-  X(line_joints_2d)               \
-  X(spring_damper_2d)             \
-  X(applied_loads_2d)             \
-  X(angle_sensors_2d)             \
-  X(point_sensors_2d)             \
-  X(joint_reaction_2d)            \
-  X(beams_2d)
+  X(register_rigid_body_2d)       \
+  X(register_particles_2d)        \
+  X(register_revolute_2d)         \
+  X(register_fixed_2d)            \
+  X(register_line_joints_2d)      \
+  X(register_spring_damper_2d)    \
+  X(register_applied_loads_2d)    \
+  X(register_angle_sensors_2d)    \
+  X(register_point_sensors_2d)    \
+  X(register_joint_reaction_2d)   \
+  X(register_beams_2d)            \
+  /* end of the planar types */
 
 #define ALPHAFLEX_SPATIAL_TYPES(X) \
-  X(rigid_body_3d)                 \
-  X(spatial_joints_3d)             \
-  X(point_loads_3d)                \
-  X(pressure_3d)                   \
-  X(edge_load_3d)                  \
-  X(point_sensors_3d)              \
-  X(body_rotation_3d)              \
-  X(joint_reaction_3d)             \
-  X(element_output_3d)             \
-  X(beams_3d)                      \
-  X(shells_3d)
+  X(register_rigid_body_3d)        \
+  X(register_spatial_joints_3d)    \
+  X(register_point_loads_3d)       \
+  X(register_pressure_3d)          \
+  X(register_edge_load_3d)         \
+  X(register_point_sensors_3d)     \
+  X(register_body_rotation_3d)     \
+  X(register_joint_reaction_3d)    \
+  X(register_element_output_3d)    \
+  X(register_beams_3d)             \
+  X(register_shells_3d)            \
+  /* end of the spatial types */
 
 namespace alphaflex::scene_detail {
 
-#define ALPHAFLEX_DECLARE(file) void register_##file(SceneTypes&);
+#define ALPHAFLEX_DECLARE(function) void function(SceneTypes&);
 ALPHAFLEX_PLANAR_TYPES(ALPHAFLEX_DECLARE)
 ALPHAFLEX_SPATIAL_TYPES(ALPHAFLEX_DECLARE)
 #undef ALPHAFLEX_DECLARE
 
-#define ALPHAFLEX_REGISTER(file) register_##file(t);
+#define ALPHAFLEX_REGISTER(function) function(t);
 
 const SceneTypes& planar_types() {
   static const SceneTypes t = [] {

@@ -76,26 +76,10 @@ ShellSection read_shell_section(const Item& it) {
   }
 }
 
-/// The mesh's surface block named by the item's `group` (then used: one block per group).
-const MeshSurfaceBlock& surface_group(const Item& it) {
-  const MeshData& mesh = it.sb.blocks.mesh;
-  const std::string group = it.keys.text("group");
-  const MeshSurfaceBlock* block = mesh.find_surface_block(group);
-  if (!block) {
-    std::string known;
-    for (const auto& b : mesh.surface_blocks) known += (known.empty() ? "" : ", ") + b.name;
-    it.rd.fail(it.keys.node("group"), it.at("group"), "mesh '" + mesh.file + "' has no physical surface group '" + group +
-                                                          "' (its surface groups: " + (known.empty() ? "none" : known) + ")");
-  }
-  if (!it.sb.blocks.groups_used.insert(group).second)
-    it.rd.fail(it.keys.node("group"), it.at("group"), "group '" + group + "' is used by another beam or shell already");
-  return *block;
-}
-
 void read_shell_block(const Item& it) {
   constexpr double kPi = 3.14159265358979323846;
   const Section& k = it.keys;
-  const MeshSurfaceBlock& block = surface_group(it);
+  const MeshSurfaceBlock& block = mesh_block(it, it.sb.blocks.mesh.surface_blocks, "surface", "beam or shell");
   const ShellSection section = read_shell_section(it);
   ShellOptions options;
   options.drilling_factor = k.number("drilling", options.drilling_factor);
