@@ -70,11 +70,15 @@ TwoPoints two_points(const Item& it, bool default_point2_coincident) {
 Eigen::Matrix3d read_orientation(const Reader& rd, const YAML::Node& n, const std::string& key) {
   if (n.IsSequence()) return exp_so3<double>(rd.vec3(n, key));
   if (!n.IsMap()) rd.fail(n, key, "expected a rotation vector [rx, ry, rz] (rad) or {axis: [x, y, z], angle: a}");
-  static const Schema rotation{"rotation", {{"axis", KeyType::Vec3, "–", kRequired, "rotation axis; non-zero"},
-                                           {"angle", KeyType::Number, "rad", kRequired, "rotation angle about `axis`"}}};
-  rd.keys(n, key, rotation);
-  const Eigen::Vector3d axis = rd.direction(rd.need(n, "axis", key), key + ".axis");
-  return exp_so3<double>(Eigen::Vector3d(axis * rd.number(rd.need(n, "angle", key), key + ".angle")));
+  const Section rotation(rd, n, key, rotation_schema());
+  const Eigen::Vector3d axis = rotation.direction("axis");
+  return exp_so3<double>(Eigen::Vector3d(axis * rotation.number("angle")));
+}
+
+const Schema& rotation_schema() {
+  static const Schema s{"rotation", {{"axis", KeyType::Vec3, "–", kRequired, "rotation axis; non-zero"},
+                                     {"angle", KeyType::Number, "rad", kRequired, "rotation angle about `axis`"}}};
+  return s;
 }
 
 int spatial_node(const Item& it, const std::string& key, bool ground_ok) {

@@ -47,6 +47,8 @@ TwoPoints two_points(const Item& it, bool default_point2_coincident);
 
 /// `orientation`: a rotation vector [rx, ry, rz] (rad) or {axis: [..], angle: ..}.
 Eigen::Matrix3d read_orientation(const Reader& rd, const YAML::Node& n, const std::string& key);
+/// The keys of a rotation given as {axis, angle} (registered with the spatial rigid body).
+const Schema& rotation_schema();
 /// A spatial body or beam/shell node named by the item's key `key` (−1: the ground, if allowed).
 int spatial_node(const Item& it, const std::string& key, bool ground_ok);
 /// Initial pose of a node (the identity for the ground).

@@ -88,6 +88,7 @@ void register_rigid_body_3d(SceneTypes& t) {
       {"markers", KeyType::List, "m, rad", "none", "frames fixed to the body, `{name, position, orientation}` in the body frame"}}),
               read_rigid_body_3d);
   t.parts.push_back(&marker_schema());
+  t.parts.push_back(&rotation_schema());
 }
 
 }  // namespace alphaflex::scene_detail
