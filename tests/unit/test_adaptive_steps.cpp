@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/driver/step_controller.hpp"
+#include "alphaflex/study/study_spec.hpp"
 #include "test_support.hpp"
 
 namespace alphaflex {
@@ -172,6 +175,24 @@ TEST(AdaptiveSteps, BadKeysAreNamed) {
   EXPECT_NE(input_error_of([&] { read_scene_text(base + "solver: {h: 1e-3}\noutput: {dt: 2.5e-3}\n", "x.yaml"); })
                 .find("output.dt: expected a multiple of solver.h"),
             std::string::npos);
+}
+
+// The study's tolerance axis (study.tol): read in mode convergence, refused elsewhere.
+TEST(AdaptiveSteps, StudyToleranceAxis) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "alphaflex_study_tol";
+  fs::create_directories(dir);
+  const fs::path scene = dir / "pendulum.yaml", study = dir / "study.yaml";
+  std::ofstream(scene) << "solver: {h: 1.0e-3, t_end: 0.01}\n"
+                          "bodies: [{name: bar, type: rigid_body, mass: 1, inertia: 0.1, position: [0.5, 0]}]\n"
+                          "joints: [{name: pin, type: revolute, body1: bar, point1: [-0.5, 0], body2: ground, point2: [0, 0]}]\n";
+  std::ofstream(study) << "study:\n  h: [1e-3]\n  tol: [1e-3, 1e-4]\n  reference: {h: 1e-4}\n";
+  const study::StudySpec spec = study::read_study(scene.string(), study.string());
+  EXPECT_EQ(spec.tol, (std::vector<double>{1e-3, 1e-4}));
+  std::ofstream(study) << "study:\n  mode: oscillation\n  h: [1e-3]\n  tol: [1e-3]\n";
+  EXPECT_NE(input_error_of([&] { study::read_study(scene.string(), study.string()); }).find("study.tol: only in mode convergence"),
+            std::string::npos);
+  fs::remove_all(dir);
 }
 
 }  // namespace
