@@ -244,6 +244,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   adaptive.h_min = rs.h_min;
   adaptive.h_max = rs.h_max;
   adaptive.output_dt = rs.output_dt;
+  adaptive.breakpoints = rs.breakpoints;
   const std::unique_ptr<StepController> controller = make_step_controller(h, rs.t_end, rs.step_cuts, adaptive);
   const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
   Checkpointer checkpointer(sub, writer.get(), checkpoint_path, rs.parameters, h, rs.checkpoint_keep);

@@ -31,7 +31,7 @@ StepPlan StepController::plan(double t) const {
     }
     p.t_next = target;
     p.last = target == t_end_;
-    p.output = !p.last;
+    p.output = !p.last && target == output_time(t);
   } else if (splits_remainder()) {
     // Within kLandingSteps steps of the target: equal steps that end on it, so that h changes by
     // a ratio n/(n+1) near 1 rather than a last step cut to a sliver (a sudden change of h excites
@@ -58,7 +58,7 @@ bool StepController::converged(const StepPlan& p, double error) {
     st_.h_min = st_.h_min == 0.0 ? p.h : std::min(st_.h_min, p.h);
     st_.h_max = std::max(st_.h_max, p.h);
   }
-  if (!p.resized && p.h == st_.h_anchor && st_.h == h_before && st_.h == st_.h_anchor && !p.output) {
+  if (!p.resized && p.h == st_.h_anchor && st_.h == h_before && st_.h == st_.h_anchor && p.t_next != landing_time(p.t)) {
     ++st_.k;  // same h: the next time is counted from the anchor
   } else {
     st_.t_anchor = p.t_next;
@@ -163,12 +163,20 @@ bool Adaptive::accept(const StepPlan& p, double error) {
   return true;
 }
 
-double Adaptive::landing_time(double t) const {
+double Adaptive::output_time(double t) const {
   if (o_.output_dt <= 0.0) return 0.0;
   // The first output time k·dt after t (by more than round-off).
   double k = std::floor(t / o_.output_dt) + 1.0;
   if (k * o_.output_dt - t <= 1e-9 * o_.output_dt) k += 1.0;
   return k * o_.output_dt;
+}
+
+double Adaptive::landing_time(double t) const {
+  double next = output_time(t);  // 0: none
+  // The first breakpoint after t (by more than round-off of the run's length).
+  const auto b = std::upper_bound(o_.breakpoints.begin(), o_.breakpoints.end(), t + 1e-12 * t_end_);
+  if (b != o_.breakpoints.end() && (next == 0.0 || *b < next)) next = *b;
+  return next;
 }
 
 std::unique_ptr<StepController> make_step_controller(double h, double t_end, int step_cuts, const AdaptiveOptions& adaptive) {

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -704,6 +705,9 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   read_joints(rd, sb, root["joints"], types);
   read_forces(rd, sb, root["forces"], types, rs.dimension == 3);
   read_sensors(rd, sb, root["sensors"], types);
+  rs.breakpoints = rd.breakpoints();
+  std::sort(rs.breakpoints.begin(), rs.breakpoints.end());
+  rs.breakpoints.erase(std::unique(rs.breakpoints.begin(), rs.breakpoints.end()), rs.breakpoints.end());
   return scene;
 }
 

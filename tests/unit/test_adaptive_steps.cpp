@@ -112,6 +112,26 @@ TEST(AdaptiveSteps, StepsLandOnTheOutputTimes) {
   EXPECT_EQ(r.times_out.back(), 0.3);  // t_end itself (6 · 0.05 is 0.30000000000000004)
 }
 
+// A 4 ms pulse at t = 0.1 s on a beam at rest (inputs/beam_impulse.yaml): before it nothing moves,
+// the error estimate is zero and h grows; the steps land on the load's breakpoints (0.1, 0.102,
+// 0.104 s) instead of stepping over the pulse, and the beam is set in motion.
+TEST(AdaptiveSteps, StepsLandOnTheLoadsBreakpoints) {
+  std::vector<std::string> o = tolerance(1e-2);
+  o.push_back("solver.t_end=0.2");
+  const RunSummary r = run_scene("beam_impulse", o);
+  for (double tb : {0.1, 0.102, 0.104}) {
+    bool found = false;
+    for (double t : r.times_out) found = found || t == tb;
+    EXPECT_TRUE(found) << "no step ends at " << tb;
+  }
+  // The same motion as fixed steps of 1e-3 s that sample the pulse (within their error): a pulse
+  // stepped over would leave the beam at rest.
+  const RunSummary fixed = run_scene("beam_impulse", {"solver.t_end=0.2"});
+  std::printf("tip_y at 0.2 s: %.4g m after %d adaptive steps, %.4g m after %d fixed steps\n", final_value(r, "tip_y"), r.steps,
+              final_value(fixed, "tip_y"), fixed.steps);
+  EXPECT_NEAR(final_value(r, "tip_y"), final_value(fixed, "tip_y"), 0.05 * std::fabs(final_value(fixed, "tip_y")));
+}
+
 // Fixed steps: the time of step k is k·h, computed, not summed (deal.II's DiscreteTime): no drift,
 // so the step at 0.5 s prints 0.5; and a run without failures under step_cuts is the same run.
 TEST(DriftFreeTimes, FixedStepTimesAreMultiplesOfTheStep) {

@@ -16,6 +16,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace alphaflex {
 
@@ -44,6 +45,9 @@ struct AdaptiveOptions {
   double rtol = 0.0, atol = 0.0;  ///< local error tolerance, relative and absolute (m, rad)
   double h_min = 0.0, h_max = 0.0;  ///< bounds of h (s); h_max 0: t_end
   double output_dt = 0.0;           ///< steps land on multiples of this (s); 0: no landing
+  /// Times the steps land on besides (a load's or driver's kinks; sorted), so that a short pulse is
+  /// not stepped over while nothing moves.
+  std::vector<double> breakpoints;
   bool enabled() const { return rtol > 0.0 || atol > 0.0; }
 };
 
@@ -89,8 +93,11 @@ class StepController {
   StepController(double h, double t_end);
   /// The policy's new h after an accepted step with scaled error `error`; false rejects the step.
   virtual bool accept(const StepPlan& p, double error) = 0;
-  /// Where the step may have to land besides t_end (output times): the first such time > t.
+  /// Where the step may have to land besides t_end (output times, breakpoints): the first such
+  /// time > t (0: none).
   virtual double landing_time(double t) const { (void)t; return 0.0; }
+  /// The first output time > t (0: none); a step that lands there writes the fields.
+  virtual double output_time(double t) const { (void)t; return 0.0; }
   /// Fixed steps take the shortened last step as it comes; the others end on a landing time with
   /// equal steps from kLandingSteps steps before it.
   virtual bool splits_remainder() const { return true; }
@@ -153,6 +160,7 @@ class Adaptive : public StepController {
  protected:
   bool accept(const StepPlan& p, double error) override;
   double landing_time(double t) const override;
+  double output_time(double t) const override;
 
  private:
   AdaptiveOptions o_;
