@@ -141,7 +141,7 @@ def budget_table(rows, names, base):
         rs = [r for r in rows if r["label"] == lab and r["status"] == "ok"]
         if not rs:
             continue
-        rs = sorted(rs, key=lambda r: -(f(r["h"]) if r["method"] == "alphaflex" else f(r["tol"])))
+        rs = sorted(rs, key=lambda r: -(f(r["h"]) if r["h"] != "" else f(r["tol"])))
         for en in names:
             for b in BUDGETS:
                 v, bound = error_at_budget(rs, en, b)
@@ -167,7 +167,7 @@ def convergence(csv_path, comments, rows, base):
         for i, lab in enumerate(labels):
             rs = [r for r in rows if r["label"] == lab and r["status"] == "ok"]
             # in the order of h (or tolerance), so that timing noise does not fold the line
-            rs = sorted(rs, key=lambda r: -(f(r["h"]) if r["method"] == "alphaflex" else f(r["tol"])))
+            rs = sorted(rs, key=lambda r: -(f(r["h"]) if r["h"] != "" else f(r["tol"])))
             pts = [(f(r["cpu"]), f(r["err_" + en])) for r in rs]
             pts = [(a, b) for a, b in pts if a > 0 and b > 0]
             if not pts:
@@ -193,7 +193,8 @@ def convergence(csv_path, comments, rows, base):
 
     # Convergence: error vs h, fitted slopes in the legend — as the study fitted them
     # (NAME_slopes.csv): errors at round-off or at the reference's accuracy are no order.
-    ours = [r for r in rows if r["method"] == "alphaflex"]
+    # Fixed-step runs only (adaptive runs, study.tol, have no h: they are in the work-precision chart).
+    ours = [r for r in rows if r["method"] == "alphaflex" and r["h"] != ""]
     fits = {}
     if os.path.exists(base + "_slopes.csv"):
         fits = {(r["label"], r["error"]): r for r in ar.load_study(base + "_slopes.csv").rows}

@@ -20,6 +20,8 @@
 #include "alphaflex/core/blas_library.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/fault_injection.hpp"
+#include "alphaflex/driver/step_controller.hpp"
+#include "alphaflex/driver/time_loop.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
 #include "alphaflex/io/checkpoint.hpp"
 #include "alphaflex/io/results_writer.hpp"
@@ -211,7 +213,6 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   if (restarting) {
     // The state, a and the counters as they were: the steps below are those the uninterrupted
     // run would have taken (the consistent start belongs to t = 0 only).
-    integrator.set_auxiliary(ck.auxiliary);
     sum.steps = static_cast<int>(ck.position.step);
     sum.newton_total = ck.position.newton_total;
     sum.newton_max = static_cast<int>(ck.position.newton_max);
@@ -237,26 +238,35 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   if (opt.stop_after_start) return sum;
 
   const double h = rs.h;
-  // Fixed steps: a restart goes on from the checkpoint's step and time with the scene's h, which may
-  // differ from the checkpoint's (a warning says so): the steps left are counted from there.
-  const long steps_before = restarting ? static_cast<long>(ck.position.step) : 0;
-  const double t_from = restarting ? s.t : 0.0;
-  const double ratio = (rs.t_end - t_from) / h;
-  long nsteps = steps_before + std::lround(ratio);
-  if (std::fabs(ratio - std::round(ratio)) > 1e-9 * std::max(1.0, ratio)) {
-    nsteps = steps_before + static_cast<long>(std::ceil(ratio));  // last step shortened to land on t_end
-    std::ostringstream os;
-    os << "t_end = " << rs.t_end << " s is not a multiple of h = " << h << " s" << (restarting ? " after the restart time" : "")
-       << ": the last step is shortened to " << rs.t_end - t_from - static_cast<double>(nsteps - steps_before - 1) * h
-       << " s (the order-2 condition, eq. 17, holds for constant h)";
-    sum.warnings.push_back(os.str());
+  // The step policy (driver/step_controller.hpp): fixed, cut-back on Newton failures, or adaptive.
+  AdaptiveOptions adaptive;
+  adaptive.rtol = rs.tolerance_rtol;
+  adaptive.atol = rs.tolerance_atol;
+  adaptive.h_min = rs.h_min;
+  adaptive.h_max = rs.h_max;
+  adaptive.output_dt = rs.output_dt;
+  adaptive.breakpoints = rs.breakpoints;
+  const std::unique_ptr<StepController> controller = make_step_controller(h, rs.t_end, rs.step_cuts, adaptive);
+  const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
+  Checkpointer checkpointer(sub, writer.get(), checkpoint_path, rs.parameters, h, rs.checkpoint_keep);
+  TimeLoopSettings ls;
+  ls.output_every = rs.output_every;
+  ls.checkpoint_steps = rs.checkpoint_steps;
+  ls.checkpoint_wall = rs.checkpoint_wall;
+  ls.scene_file = scene.file;
+  ls.outdir = opt.outdir;
+  ls.stop_signal = [] { return stop_signal(); };
+  ls.signal_name = [](int sig) { return signal_name(sig); };
+  TimeLoop loop(sub, integrator, *controller, checkpointer, writer.get(), ls);
+  if (restarting) loop.restore(ck, h);
+  if (const auto* fixed = dynamic_cast<const FixedSteps*>(controller.get())) {
+    const std::string w = fixed->shortened_last_step(s.t, restarting);
+    if (!w.empty()) sum.warnings.push_back(w);
   }
   {
     // Index-3 round-off floor (paper Sec. 3.3): q carries round-off ε‖q‖, which q̈ = β'Δq and λ
     // amplify by β' ~ 1/(βh²). Warn when that floor is no longer small against q̈ itself.
-    const auto& p = rs.parameters;
-    const double beta_p = (1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f));
-    const double floor = std::numeric_limits<double>::epsilon() * std::max(sub.max_abs(s.q), 1e-300) * beta_p;
+    const double floor = std::numeric_limits<double>::epsilon() * std::max(sub.max_abs(s.q), 1e-300) * rs.parameters.beta_prime(h);
     const double acc = sub.max_abs(s.qdd);
     if (floor > 1e-3 * acc) {
       std::ostringstream os;
@@ -270,165 +280,39 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   if (opt.verbose && rank == 0)
     for (const auto& w : sum.warnings) std::cout << "  warning: " << w << std::endl;
 
+  LoopCounters counters;
+  counters.steps = sum.steps;
+  counters.newton_total = sum.newton_total;
+  counters.newton_max = sum.newton_max;
+  ProgressReporter progress(opt.verbose && rank == 0, rs.progress_interval, s.t, rs.t_end,
+                            controller->total_steps(counters.steps, s.t));
+  loop.add_observer([&](const StepEvent& e) { record(e.state, e.fields); });
+  loop.add_observer([&](const StepEvent& e) {
+    if (e.step > 0)
+      progress.update(e.step, e.state.t, counters.newton_total, e.controller.variable() ? e.controller.state().rejected : -1,
+                      e.controller.state().h);
+  });
   long first = 1, last_written = 0;
   if (restarting) {
     first = static_cast<long>(ck.position.step) + 1;
     last_written = static_cast<long>(ck.position.last_written);
   } else {
-    record(s, true);
+    loop.observe(0, s, true);
   }
-  ProgressReporter progress(opt.verbose && rank == 0, rs.progress_interval, s.t, rs.t_end, nsteps);
-
-  // Checkpoints (io/checkpoint.hpp): every checkpoint_every steps or s of wall time, at the end,
-  // after a failure and on a stop signal. The results are committed first, so the checkpoint's
-  // position of the results is complete on disk.
-  RunPosition pos;
-  pos.h = h;
-  double hc = h;  // the step size in use (step cuts)
-  int cuts_in_row = 0, good = 0;
-  if (restarting) {
-    // With step cuts the checkpoint's step size in use goes on, unless the scene changed h.
-    if (std::fabs(ck.position.h - h) <= 1e-14 * h || ck.position.h < h) hc = ck.position.h;
-    cuts_in_row = static_cast<int>(ck.position.cuts_in_row);
-    good = static_cast<int>(ck.position.good_steps);
-    sum.h_min = ck.position.h_min;
-  }
-  const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
-  double last_checkpoint = MPI_Wtime();
-  auto checkpoint = [&](long n) {
-    if (!writer) return;
-    const double t0 = MPI_Wtime();
-    writer->commit();
-    pos.step = n;
-    pos.h = hc;
-    pos.cuts_in_row = cuts_in_row;
-    pos.good_steps = good;
-    pos.newton_total = sum.newton_total;
-    pos.newton_max = sum.newton_max;
-    pos.step_cuts = sum.step_cuts;
-    pos.h_min = sum.h_min;
-    pos.last_written = last_written;
-    pos.results = writer->position();
-    sum.checkpoint_bytes = write_checkpoint(sub, checkpoint_path, s, integrator.auxiliary(), pos, rs.parameters, h,
-                                            rs.checkpoint_keep);
-    sum.checkpoint = checkpoint_path;
-    ++sum.checkpoints;
-    sum.checkpoint_time += MPI_Wtime() - t0;
-    last_checkpoint = MPI_Wtime();
-    // Modified Newton: a restart has no factorization to keep; refactor here too, so that the
-    // run and its restart take the same iterations bit for bit.
-    integrator.invalidate_factorization();
-  };
-  // After every step, the ranks agree whether to checkpoint (rank 0's wall clock, the step count)
-  // and whether to stop (a signal on any rank): one small all-reduce.
-  auto due = [&](long n) {
-    int flags[2] = {stop_signal(), 0};
-    if (rs.checkpoint_steps > 0 && n % rs.checkpoint_steps == 0) flags[1] = 1;
-    if (rank == 0 && rs.checkpoint_wall > 0.0 && MPI_Wtime() - last_checkpoint >= rs.checkpoint_wall) flags[1] = 1;
-    if (sub.size() > 1) MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, comm);
-    if (flags[1] || flags[0]) checkpoint(n);
-    if (!flags[0]) return;
-    // Stop on request: the checkpoint is written; the state reached goes to the results too.
-    if (writer) {
-      if (last_written != n) writer->write_fields(s);
-      writer->finish();
-    }
-    progress.finish();
-    std::ostringstream os;
-    os << "stopped by " << signal_name(flags[0]) << " at t = " << s.t << " s (step " << n << " of " << nsteps << ")";
-    if (writer)
-      os << ": checkpoint " << checkpoint_path << ", results in " << writer->xdmf_path() << ".\n  Go on with: alphaflex run "
-         << scene.file << " --restart " << checkpoint_path << " -o " << std::filesystem::absolute(opt.outdir).string()
-         << " (and the same --set options)";
-    else
-      os << " (no output, no checkpoint)";
-    throw Interrupted(os.str());
-  };
-
-  // A failed step: keep what was computed (a checkpoint of the last converged state, which goes to
-  // the files too) and stop.
-  auto stop = [&](long n, const SolverError& e) {
-    if (writer) {
-      checkpoint(n - 1);
-      if (last_written != n - 1) writer->write_fields(s);
-      writer->finish();
-    }
-    std::ostringstream os;
-    os << "step " << n << " of " << nsteps << ": " << e.what() << "\n  The last converged state (t = " << s.t
-       << " s) is written" << (writer ? " to " + writer->xdmf_path() + "; a checkpoint of it to " + checkpoint_path
-                                            : std::string(" nowhere (no output)"))
-       << ".";
-    throw SolverError(os.str());
-  };
-  if (!restarting) sum.h_min = h;
-  long n = first - 1;
-  if (rs.step_cuts == 0) {
-    // Fixed steps (the paper's scheme exactly): stop at the first Newton failure.
-    for (n = first; n <= nsteps; ++n) {
-      const double hn = (n == nsteps) ? rs.t_end - s.t : h;
-      StepReport rep;
-      try {
-        rep = integrator.step(s, hn);
-      } catch (const SolverError& e) {
-        stop(n, e);
-      }
-      if (fault_injected("internal")) throw std::runtime_error("injected fault (-af_inject_fault internal) at step " + std::to_string(n));
-      ++sum.steps;
-      sum.newton_total += rep.iterations;
-      sum.newton_max = std::max(sum.newton_max, rep.iterations);
-      const bool fields = (n % rs.output_every == 0) || n == nsteps;
-      record(s, fields);
-      if (fields) last_written = n;
-      progress.update(n, s.t, sum.newton_total);
-      if (n < nsteps) due(n);
-    }
-    n = nsteps;
-  } else {
-    // Newton failure policy (solver.step_cuts): a step that does not converge is retried from the
-    // same state (q, v, q̈, λ and the auxiliary a) with h halved, up to step_cuts times in a row;
-    // after 4 converged steps h doubles again, up to the scene's h. The auxiliary a is kept as it is
-    // across a change of h: the scheme stays stable, but its second order holds only for constant h
-    // (Arnold & Brüls 2007, eq. 17) — a run with cuts carries that extra error (measured in
-    // tests/unit/test_step_cuts.cpp); rescaling a − q̈ with the step ratio was tried and was worse.
-    // The summary counts the cuts.
-    const double t_tol = 1e-12 * std::max(1.0, std::fabs(rs.t_end));
-    while (rs.t_end - s.t > t_tol) {
-      const double hn = std::min(hc, rs.t_end - s.t);
-      const MechanicalState saved = s;
-      const Eigen::VectorXd saved_a = integrator.auxiliary();
-      StepReport rep;
-      try {
-        rep = integrator.step(s, hn);
-      } catch (const SolverError& e) {
-        if (cuts_in_row >= rs.step_cuts) stop(n + 1, e);
-        s = saved;
-        integrator.set_auxiliary(saved_a);
-        hc = 0.5 * hn;
-        ++cuts_in_row;
-        ++sum.step_cuts;
-        good = 0;
-        sum.h_min = std::min(sum.h_min, hc);
-        continue;
-      }
-      ++n;
-      cuts_in_row = 0;
-      if (hc < h && ++good >= 4) {
-        hc = std::min(h, 2.0 * hc);
-        good = 0;
-      }
-      ++sum.steps;
-      sum.newton_total += rep.iterations;
-      sum.newton_max = std::max(sum.newton_max, rep.iterations);
-      const bool last = rs.t_end - s.t <= t_tol;
-      const bool fields = (n % rs.output_every == 0) || last;
-      record(s, fields);
-      if (fields) last_written = n;
-      progress.update(n, s.t, sum.newton_total);
-      if (!last) due(n);
-    }
-  }
+  loop.run(s, first, last_written, counters);
   progress.finish();
-  checkpoint(n);  // the end of a run always leaves one (a longer solver.t_end can go on from it)
+  sum.steps = static_cast<int>(counters.steps);
+  sum.newton_total = counters.newton_total;
+  sum.newton_max = counters.newton_max;
+  sum.checkpoints = counters.checkpoints;
+  sum.checkpoint_bytes = counters.checkpoint_bytes;
+  sum.checkpoint = counters.checkpoint;
+  sum.checkpoint_time = counters.checkpoint_time;
+  const StepControllerState& st_end = controller->state();
+  sum.step_cuts = static_cast<int>(st_end.newton_failures);
+  sum.rejected_steps = st_end.rejected;
+  sum.h_min = st_end.h_min;
+  sum.h_max = st_end.h_max;
   return finish(s);
 }
 
@@ -448,6 +332,10 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
      << (scene.settings.analysis == Analysis::Static ? "  load steps          " : "  steps               ") << s.steps;
   if (scene.settings.analysis == Analysis::Static)
     os << " (static, load factor 0 to " << scene.settings.load_factor << ", " << s.static_cuts << " step cuts)\n";
+  else if (scene.settings.tolerance_rtol > 0.0 || scene.settings.tolerance_atol > 0.0)
+    os << " accepted, " << s.rejected_steps << " rejected, " << s.step_cuts << " Newton failures (adaptive: rtol "
+       << scene.settings.tolerance_rtol << ", atol " << scene.settings.tolerance_atol << "; h from " << s.h_min << " to " << s.h_max
+       << " s, first " << scene.settings.h << " s; t_end = " << scene.settings.t_end << " s)\n";
   else if (scene.settings.step_cuts > 0)
     os << " (h = " << scene.settings.h << " s, t_end = " << scene.settings.t_end << " s; " << s.step_cuts
        << " step cuts, smallest h = " << s.h_min << " s)\n";

@@ -85,31 +85,51 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   s.qdd = -x.dofs;
   s.lambda = -x.multipliers;
   a_ = s.qdd;  // a_0 = q̈_0 (eq. 3)
+  h_aux_ = 0.0;  // no shift yet: a_0 − q̈_0 = 0 whatever the first h
   factored_h_ = 0.0;  // the solves above factored other matrices
   return sub.max_abs(m.difference(q_in, s.q));
 }
 
-StepReport GeneralizedAlpha::step(MechanicalState& s, double h) {
+StepReport GeneralizedAlpha::step(MechanicalState& s, double h) { return step(s, h, s.t + h); }
+
+StepReport GeneralizedAlpha::step(MechanicalState& s, double h, double t_next) {
+  if (variable_ && h_aux_ > 0.0 && h != h_aux_) {
+    // a_n − q̈_n ≈ (α_m − α_f) h_old q⃛(t_n) (Arnold & Brüls 2007, a_n ≈ q̈(t_n + (α_m − α_f)h)):
+    // scaled by h/h_old it is the shift of the new step (docs/theory/adaptive_steps.md).
+    a_ = s.qdd + (h / h_aux_) * (a_ - s.qdd);
+  }
+  const Eigen::VectorXd a_n = estimate_ ? a_ : Eigen::VectorXd();
+  StepReport rep = step_at(s, h, t_next);
+  h_aux_ = h;
+  if (estimate_) {
+    const Subdomain& sub = lin_.system().subdomain();
+    rep.local_error = std::fabs(p_.local_error_constant()) * h * h * sub.max_abs(a_ - a_n);
+    rep.q_norm = sub.max_abs(s.q);
+  }
+  return rep;
+}
+
+StepReport GeneralizedAlpha::step_at(MechanicalState& s, double h, double t_next) {
   bool used_old_matrix = false;
-  if (!opt_.newton.modified) return try_step(s, h, false, used_old_matrix);
+  if (!opt_.newton.modified) return try_step(s, h, t_next, false, used_old_matrix);
   try {
-    return try_step(s, h, true, used_old_matrix);
+    return try_step(s, h, t_next, true, used_old_matrix);
   } catch (const SolverError&) {
     // A factorization from an earlier state may be too far off for this step: full Newton from the
     // same start decides whether the step itself fails (try_step leaves `s` as it was).
     if (!used_old_matrix) throw;
     factored_h_ = 0.0;
-    StepReport again = try_step(s, h, false, used_old_matrix);
+    StepReport again = try_step(s, h, t_next, false, used_old_matrix);
     return again;
   }
 }
 
-StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, bool allow_reuse, bool& used_old_matrix) {
+StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_next, bool allow_reuse, bool& used_old_matrix) {
   const Subdomain& sub = lin_.system().subdomain();
   const Model& model = lin_.model();
   const double am = p_.alpha_m, af = p_.alpha_f, beta = p_.beta, gamma = p_.gamma;
-  const double beta_p = (1.0 - am) / (h * h * beta * (1.0 - af));  // eq. (6)
-  const double gamma_p = gamma / (h * beta);
+  const double beta_p = p_.beta_prime(h);  // eq. (6)
+  const double gamma_p = p_.gamma_prime(h);
 
   // Lie-group form (Brüls, Cardona & Arnold 2012, Algorithm 1 there): q_{n+1} = q_n ∘ exp(x) with
   // x = hΔq_n = h v_n + h²(1/2 − β) a_n + h²β a_{n+1}; every change dx of x moves q through
@@ -118,7 +138,7 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, bool allow_r
   const Eigen::VectorXd q_n = s.q;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(s.v.size());
   MechanicalState n1 = s;
-  n1.t = s.t + h;
+  n1.t = t_next;
   auto move = [&](const Eigen::VectorXd& dx) {
     x += dx;
     model.advance(q_n, x, dx, n1.q);
@@ -205,6 +225,7 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, bool allow_r
     throw SolverError(os.str());
   }
   a_ = a_pred + (1.0 - af) / (1.0 - am) * n1.qdd;
+  if (estimate_) report.increment = x;
   s = n1;
   return report;
 }

@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <iomanip>
+#include <algorithm>
 #include <limits>
 #include <sstream>
 
@@ -149,8 +150,11 @@ bool newton_converged(const NewtonOptions& nt, const NewtonRecord& rec, int iter
   // λ cannot be resolved below the round-off of q amplified by β' ~ 1/(βh²) (the index-3
   // amplification of Arnold & Brüls Sec. 3.3): once Δq is at round-off level, λ is as good as it gets.
   const double q_scale = std::max(q_norm, 1e-300);
-  const bool q_converged = rec.correction_q <= nt.atol + nt.rtol * q_scale;
-  const bool q_at_roundoff = rec.correction_q <= 1e4 * std::numeric_limits<double>::epsilon() * q_scale;
+  const double roundoff = 1e4 * std::numeric_limits<double>::epsilon() * q_scale;
+  double q_tol = nt.atol + nt.rtol * q_scale;
+  if (nt.step_atol >= 0.0) q_tol = std::min(q_tol, std::max(nt.step_atol + nt.step_rtol * q_scale, roundoff));
+  const bool q_converged = rec.correction_q <= q_tol;
+  const bool q_at_roundoff = rec.correction_q <= roundoff;
   const bool lambda_converged = rec.correction_lambda <= nt.atol_lambda + nt.rtol * lambda_norm;
   return q_converged && (lambda_converged || (iteration > 1 && q_at_roundoff));
 }

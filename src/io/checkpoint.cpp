@@ -84,6 +84,17 @@ long long write_checkpoint(const Subdomain& sub, const std::string& path, const 
   write_attribute(h5, f, "step_cuts", p.step_cuts);
   write_attribute(h5, f, "h_min", p.h_min);
   write_attribute(h5, f, "last_written", p.last_written);
+  write_attribute(h5, f, "t_anchor", p.t_anchor);
+  write_attribute(h5, f, "h_anchor", p.h_anchor);
+  write_attribute(h5, f, "steps_from_anchor", p.k);
+  write_attribute(h5, f, "error_prev", p.error_prev);
+  write_attribute(h5, f, "h_max", p.h_max);
+  write_attribute(h5, f, "h_auxiliary", p.h_auxiliary);
+  write_attribute(h5, f, "accepted_steps", p.accepted);
+  write_attribute(h5, f, "rejected_steps", p.rejected);
+  write_attribute(h5, f, "history_count", p.history_count);
+  write_attribute(h5, f, "history_h1", p.history_h1);
+  write_attribute(h5, f, "history_h2", p.history_h2);
   write_attribute(h5, f, "csv_rows", p.results.csv_rows);
   write_attribute(h5, f, "output_steps", p.results.steps);
   write_attribute(h5, f, "output_parts", p.results.parts);
@@ -105,6 +116,8 @@ long long write_checkpoint(const Subdomain& sub, const std::string& path, const 
   io_detail::write_rows(h5, st, "v", rows.dof, 1, local.v.data(), xfer);
   io_detail::write_rows(h5, st, "qdd", rows.dof, 1, local.qdd.data(), xfer);
   io_detail::write_rows(h5, st, "a", rows.dof, 1, auxiliary.data(), xfer);
+  if (p.history_count >= 1) io_detail::write_rows(h5, st, "history_m1", rows.dof, 1, p.history_m1.data(), xfer);
+  if (p.history_count >= 2) io_detail::write_rows(h5, st, "history_m2", rows.dof, 1, p.history_m2.data(), xfer);
   io_detail::write_rows(h5, st, "lambda", rows.mult, 1, local.lambda.data(), xfer);
   h5(H5Gclose(st), "close the group state");
   agree<OutputError>(sub, h5.error());
@@ -182,6 +195,14 @@ Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const 
        read_attribute(f, "alpha_m", am) && read_attribute(f, "alpha_f", af) && read_attribute(f, "beta", beta) &&
        read_attribute(f, "gamma", gamma) && read_attribute(f, "h", h_saved) && read_attribute(f, "model", model_name);
   if (err.empty() && !ok) err = path + ": the checkpoint is incomplete (attributes missing)";
+  // The step controller's state (absent from checkpoints written before it was kept).
+  p.controller = ok && read_attribute(f, "t_anchor", p.t_anchor) && read_attribute(f, "h_anchor", p.h_anchor) &&
+                 read_attribute(f, "steps_from_anchor", p.k) && read_attribute(f, "error_prev", p.error_prev) &&
+                 read_attribute(f, "h_max", p.h_max) && read_attribute(f, "h_auxiliary", p.h_auxiliary) &&
+                 read_attribute(f, "accepted_steps", p.accepted) && read_attribute(f, "rejected_steps", p.rejected) &&
+                 read_attribute(f, "history_count", p.history_count) && read_attribute(f, "history_h1", p.history_h1) &&
+                 read_attribute(f, "history_h2", p.history_h2);
+  if (!p.controller) p.history_count = 0;
 
   // The model must be this scene's: counts first, then the first node, joint or element that differs.
   const Model& g = sub.global_model();
@@ -222,11 +243,13 @@ Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const 
     if (!os.str().empty()) err = path + ": " + os.str() + ". Restart with the scene the checkpoint was written by.";
   }
   MechanicalState global;
-  std::vector<double> q, v, qdd, a, lambda;
+  std::vector<double> q, v, qdd, a, lambda, m1, m2;
   if (err.empty()) {
     const hid_t st = H5Gopen2(f, "state", H5P_DEFAULT);
     ok = st >= 0 && io_detail::read_all(st, "q", q) && io_detail::read_all(st, "v", v) &&
-         io_detail::read_all(st, "qdd", qdd) && io_detail::read_all(st, "a", a) && io_detail::read_all(st, "lambda", lambda);
+         io_detail::read_all(st, "qdd", qdd) && io_detail::read_all(st, "a", a) && io_detail::read_all(st, "lambda", lambda) &&
+         (p.history_count < 1 || io_detail::read_all(st, "history_m1", m1)) &&
+         (p.history_count < 2 || io_detail::read_all(st, "history_m2", m2));
     if (st >= 0) ok = H5Gclose(st) >= 0 && ok;
     if (!ok || q.size() != static_cast<size_t>(g.num_conf()) || v.size() != static_cast<size_t>(g.num_dofs()) ||
         lambda.size() != static_cast<size_t>(g.num_multipliers()))
@@ -243,6 +266,11 @@ Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const 
   MechanicalState aux = global;
   aux.v = Eigen::Map<const Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
   c.auxiliary = sub.restrict(aux).v;
+  for (auto [from, to] : {std::pair{&m1, &p.history_m1}, std::pair{&m2, &p.history_m2}})
+    if (!from->empty()) {
+      aux.v = Eigen::Map<const Eigen::VectorXd>(from->data(), static_cast<Eigen::Index>(from->size()));
+      *to = sub.restrict(aux).v;
+    }
   // Settings the uninterrupted run had: a restart may change them, but then it is another run.
   auto differs = [](double x, double y) { return std::fabs(x - y) > 1e-14 * std::max(1.0, std::fabs(y)); };
   if (differs(am, parameters.alpha_m) || differs(af, parameters.alpha_f) || differs(beta, parameters.beta) ||
@@ -252,6 +280,7 @@ Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const 
        << ", " << gamma << "): the run goes on with the scene's, and its results are not those of the uninterrupted run";
     c.warnings.push_back(os.str());
   }
+  c.scene_h = h_saved;
   if (differs(h_saved, h)) {
     std::ostringstream os;
     os << "solver.h differs from the checkpoint's (" << h_saved << " s): the run goes on with h = " << h

@@ -279,10 +279,14 @@ TimeFunctionPtr Reader::function(const YAML::Node& n, const std::string& key) co
     if (type == "constant") return make_constant(f.number("value"));
     if (type == "ramp" || type == "smooth_step") {
       const double t0 = f.number("t0"), t1 = f.number("t1"), v0 = f.number("from", 0.0), v1 = f.number("to");
+      breakpoints_.insert(breakpoints_.end(), {t0, t1});
       return type == "ramp" ? make_ramp(t0, t1, v0, v1) : make_smooth_step(t0, t1, v0, v1);
     }
     if (type == "linear") return make_linear(f.number("rate"), f.number("offset", 0.0));
-    if (type == "spin_up") return make_spin_up(f.number("rate"), f.number("time"));
+    if (type == "spin_up") {
+      breakpoints_.push_back(f.number("time"));
+      return make_spin_up(f.number("rate"), f.number("time"));
+    }
     if (type == "sine")
       return make_sine(f.number("amplitude"), f.number("frequency"), f.number("phase", 0.0), f.number("offset", 0.0));
     // table
@@ -291,6 +295,7 @@ TimeFunctionPtr Reader::function(const YAML::Node& n, const std::string& key) co
     if (!nt.IsSequence() || !nv.IsSequence()) fail(n, key, "t and values must be lists of numbers");
     for (size_t i = 0; i < nt.size(); ++i) t.push_back(number(nt[i], key + ".t"));
     for (size_t i = 0; i < nv.size(); ++i) v.push_back(number(nv[i], key + ".values"));
+    breakpoints_.insert(breakpoints_.end(), t.begin(), t.end());
     return make_table(t, v);
   } catch (const std::invalid_argument& e) {
     fail(n, key, e.what());

@@ -89,8 +89,8 @@ ConditionNumbers iteration_matrix_condition(const Model& model, const Mechanical
   const MechanicalState local = sub.restrict(s);  // this rank's owned and ghost nodes
   const double bh2 = p.beta * h * h;
   AssemblyCoefficients c;
-  c.mass = (1.0 - p.alpha_m) / (h * h * p.beta * (1.0 - p.alpha_f));  // β' (eq. 6)
-  c.damping = p.gamma / (h * p.beta);                                  // γ'
+  c.mass = p.beta_prime(h);  // β' (eq. 6)
+  c.damping = p.gamma_prime(h);                                        // γ'
   c.stiffness = 1.0;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(local.v.size());
   if (model.has_lie_group_nodes()) c.increment = &zero;

@@ -256,7 +256,7 @@ class Study {
 
   /// Overrides of one run: the setting's solver map, the study's `set:`, the command line's --set,
   /// the setting's `set:` list, then the study's h and t_end.
-  std::vector<std::string> overrides(const SchemeSetting& st, double h) const {
+  std::vector<std::string> overrides(const SchemeSetting& st, double h, double tol = 0.0) const {
     std::vector<std::string> o;
     if (!st.solver_override.empty()) o.push_back(st.solver_override);
     o.insert(o.end(), spec_.overrides.begin(), spec_.overrides.end());
@@ -264,13 +264,17 @@ class Study {
     o.insert(o.end(), st.overrides.begin(), st.overrides.end());
     if (h > 0.0) o.push_back("solver.h=" + num(h));
     if (spec_.t_end > 0.0) o.push_back("solver.t_end=" + num(spec_.t_end));
+    if (tol > 0.0) {
+      o.push_back("solver.tolerance.rtol=" + num(tol));
+      o.push_back("solver.tolerance.atol=" + num(tol));
+    }
     return o;
   }
 
-  Scene scene_for(const SchemeSetting& st, double h, const std::string& scene_file = "") {
+  Scene scene_for(const SchemeSetting& st, double h, const std::string& scene_file = "", double tol = 0.0) {
     Scene sc;
     try {
-      sc = load_scene(scene_file.empty() ? spec_.scene : scene_file, overrides(st, h), comm_);
+      sc = load_scene(scene_file.empty() ? spec_.scene : scene_file, overrides(st, h, tol), comm_);
     } catch (const InputError& e) {
       throw InputError(std::string(e.what()) + "\n  (in the runs of " + st.where + ")");
     }
@@ -426,12 +430,22 @@ class Study {
     say("study " + spec_.name + ": convergence, " + std::to_string(spec_.settings.size()) + " setting(s) x " +
         std::to_string(spec_.h.size()) + " step size(s); reference: " + res_.reference_label);
     for (const auto& st : spec_.settings) {
-      for (double h : spec_.h) {
-        Scene sc = scene_for(st, h);
+      // The fixed step sizes, then the tolerances of adaptive runs (first step h[0]).
+      const size_t runs = spec_.h.size() + spec_.tol.size();
+      for (size_t i = 0; i < runs; ++i) {
+        const bool adaptive = i >= spec_.h.size();
+        const double h = adaptive ? spec_.h.front() : spec_.h[i];
+        const double tol = adaptive ? spec_.tol[i - spec_.h.size()] : 0.0;
+        Scene sc = scene_for(st, h, "", tol);
         RunNeeds needs;
-        needs.last_state = spec_.condition_number;
+        needs.last_state = spec_.condition_number && !adaptive;
         RunRecord rec = run_one(sc, needs, comm_);
         StudyRow row = row_for(sc, st, h, rec);
+        if (adaptive) {
+          row.label = st.label + " adaptive";
+          row.h = std::numeric_limits<double>::quiet_NaN();
+          row.tol = tol;
+        }
         if (rec.ok) {
           const auto& names = rec.summary.sensor_names;
           for (const auto& s : sensors_) {
@@ -440,7 +454,7 @@ class Study {
           }
           if (ref_.has_state) state_errors(*sc.model, rec.summary.final_state, ref_.state, spec_.relative_errors, row.errors);
         }
-        if (spec_.condition_number && rec.t.size() > 0) {
+        if (spec_.condition_number && !adaptive && rec.t.size() > 0) {
           const ConditionNumbers c = iteration_matrix_condition(*sc.model, rec.last, row.params, h, row.scaling, comm_);
           row.extra.emplace_back("cond_2norm", c.two_norm);
           row.extra.emplace_back("cond_mumps1", c.mumps_cond1);

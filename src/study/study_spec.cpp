@@ -42,6 +42,7 @@ const Schema kStudy{"study", {
      "`convergence` (work–precision, convergence, cost), `oscillation` (multiplier oscillations), `blow_up` (forced unstable parameters), `fidelity` (model variants)",
      {}, "", "", {"convergence", "oscillation", "blow_up", "fidelity"}},
     {"h", KeyType::Numbers, "s", "**required** (one value for `fidelity`, default there: each scene's)", "step sizes; every run takes `solver.h` from here", Range::positive(), "step size (s)", "number or list"},
+    {"tol", KeyType::Numbers, "–", "none", "`convergence`: tolerances of adaptive runs (`solver.tolerance` rtol = atol = tol, first step the first `h`) of every setting, beside its fixed step sizes; rows labelled `LABEL adaptive`", Range::positive(), "tolerance", "number or list"},
     {"t_end", KeyType::Number, "s", "the scene's `solver.t_end`", "final time of every run; the errors are measured there", Range::positive(), "final time (s)"},
     {"settings", KeyType::List, "–", "one setting: the scene's solver", "scheme settings (`study.settings`); labels unique; `fidelity` takes one"},
     {"reference", KeyType::Map, "–", "none (**required** for `convergence`)", "what the errors are measured against (`study.reference`)"},
@@ -186,6 +187,10 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
     rd.fail(s["name"], "study.name", "expected a plain file name (no spaces or slashes)");
   if (study.has("h")) spec.h = study.numbers("h");
   else if (spec.mode != StudyMode::Fidelity) rd.fail(s, "study.h", "missing: the step sizes to run (s), e.g. [1e-3, 5e-4]");
+  if (study.has("tol")) {
+    spec.tol = study.numbers("tol");
+    if (spec.mode != StudyMode::Convergence) rd.fail(s["tol"], "study.tol", "only in mode convergence");
+  }
   spec.t_end = study.number("t_end", spec.t_end);
   for (double h : spec.h)
     if (spec.t_end > 0.0 && h > spec.t_end) rd.fail(s["h"], "study.h", "a step size exceeds study.t_end");

@@ -20,13 +20,14 @@ class ProgressReporter {
   ProgressReporter(const ProgressReporter&) = delete;
   ProgressReporter& operator=(const ProgressReporter&) = delete;
 
-  /// After step `step` (1-based) reached time t with `newton_total` iterations so far (< 0: not known).
-  void update(long step, double t, long newton_total);
+  /// After step `step` (1-based) reached time t with `newton_total` iterations so far (< 0: not
+  /// known); variable steps: `rejected` steps so far (< 0: fixed steps) and the step size h.
+  void update(long step, double t, long newton_total, long long rejected = -1, double h = 0.0);
   /// Clears a terminal line (before the summary).
   void finish();
 
   /// The line printed for a state (exposed for the tests).
-  std::string line(long step, double t, long newton_total, double wall) const;
+  std::string line(long step, double t, long newton_total, double wall, long long rejected = -1, double h = 0.0) const;
 
  private:
   bool active_, terminal_;

@@ -37,7 +37,8 @@ struct RunSummary {
   int steps = 0;              ///< time steps (load steps in a static analysis)
   int static_steps = 0, static_cuts = 0;  ///< load steps and step cuts of the quasi-static solve
   int step_cuts = 0;          ///< halvings of h after failed dynamic steps (solver.step_cuts)
-  double h_min = 0.0;         ///< smallest step taken (s)
+  double h_min = 0.0, h_max = 0.0;  ///< smallest and largest step taken (s; steps shortened to land on t_end or an output time aside)
+  long long rejected_steps = 0;     ///< steps rejected by the local error test (solver.tolerance) and retried
   long newton_total = 0;
   int newton_max = 0;
   int unknowns = 0, coordinates = 0, multipliers = 0;

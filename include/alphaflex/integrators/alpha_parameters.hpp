@@ -29,6 +29,15 @@ struct AlphaParameters {
   /// Spectral radius at infinity of the linear undamped oscillator, max |eigenvalue| of the
   /// amplification matrix as ωh → ∞ (for reporting).
   double rho_infinity() const;
+
+  /// β' = (1 − α_m)/(βh²(1 − α_f)) and γ' = γ/(βh) of eq. (6): ∂q̈/∂q and ∂q̇/∂q of a Newton
+  /// correction (the one place they are computed).
+  double beta_prime(double h) const { return (1.0 - alpha_m) / (h * h * beta * (1.0 - alpha_f)); }
+  double gamma_prime(double h) const { return gamma / (h * beta); }
+  /// C of the local error of q in one step, q_{n+1} − q(t_{n+1}) ≈ C h² (a_{n+1} − a_n) with
+  /// C = β + (α_m − α_f)/2 − 1/6 (docs/theory/adaptive_steps.md; Zienkiewicz & Xie 1991 for Newmark,
+  /// where it is β − 1/6).
+  double local_error_constant() const { return beta + 0.5 * (alpha_m - alpha_f) - 1.0 / 6.0; }
 };
 
 }  // namespace alphaflex

@@ -46,6 +46,11 @@ struct IntegratorOptions {
 struct StepReport {
   int iterations = 0;
   std::vector<NewtonRecord> history;
+  /// With set_error_estimate(true): ‖C h² (a_{n+1} − a_n)‖∞, the local error estimate of q
+  /// (AlphaParameters::local_error_constant), and ‖q_{n+1}‖∞ (both over all ranks); else -1.
+  double local_error = -1.0, q_norm = -1.0;
+  /// With set_error_estimate(true): the step's increment x = hΔq_n (q_{n+1} = q_n ∘ exp(x); local).
+  Eigen::VectorXd increment;
 };
 
 class GeneralizedAlpha {
@@ -61,10 +66,32 @@ class GeneralizedAlpha {
   /// One step of size h (Algorithm 1). On Newton failure throws SolverError and leaves `s` as it
   /// was (the last converged state).
   StepReport step(MechanicalState& s, double h);
+  /// The same step, reaching the time `t_next` given by the caller (times without drift,
+  /// driver/step_controller.hpp); the step size is h.
+  StepReport step(MechanicalState& s, double h, double t_next);
 
   const AlphaParameters& parameters() const { return p_; }
   const Eigen::VectorXd& auxiliary() const { return a_; }
   void set_auxiliary(const Eigen::VectorXd& a) { a_ = a; }
+  /// The step size the auxiliary vector belongs to: a_n ≈ q̈(t_n + (α_m − α_f) h) (0: none, a = q̈_0).
+  double auxiliary_step() const { return h_aux_; }
+  void set_auxiliary(const Eigen::VectorXd& a, double h) {
+    a_ = a;
+    h_aux_ = h;
+  }
+  /// Variable steps: at a change of h the auxiliary vector is moved to the new shifted time,
+  /// a ← q̈_n + (h_new/h_old)(a − q̈_n) (docs/theory/adaptive_steps.md), which keeps the local
+  /// error O(h³) and the scheme second order across changes of h. Off: a is kept as it is (the
+  /// fixed-step scheme, whose shortened last step stays bit for bit what it was).
+  void set_variable_steps(bool on) { variable_ = on; }
+  /// Compute StepReport::local_error (two all-reduces per step).
+  void set_error_estimate(bool on) { estimate_ = on; }
+  /// The next steps' Newton iteration also stops only once the coordinate correction is
+  /// ≤ atol + rtol‖q‖∞ (NewtonOptions::step_atol; atol < 0: off).
+  void set_step_newton_tolerance(double atol, double rtol) {
+    opt_.newton.step_atol = atol;
+    opt_.newton.step_rtol = rtol;
+  }
   /// The next step assembles and factors S_t afresh (modified Newton; e.g. after a checkpoint).
   void invalidate_factorization() { factored_h_ = 0.0; }
   /// Factorizations of S_t kept from an earlier iteration (modified Newton), and refactorizations
@@ -80,9 +107,12 @@ class GeneralizedAlpha {
   IntegratorOptions opt_;
   Eigen::VectorXd a_;
   double factored_h_ = 0.0;  ///< h of the S_t now factored (0: none usable)
+  double h_aux_ = 0.0;       ///< the h a_ belongs to
+  bool variable_ = false, estimate_ = false;
   long reused_ = 0, refreshes_ = 0;
 
-  StepReport try_step(MechanicalState& s, double h, bool allow_reuse, bool& used_old_matrix);
+  StepReport step_at(MechanicalState& s, double h, double t_next);
+  StepReport try_step(MechanicalState& s, double h, double t_next, bool allow_reuse, bool& used_old_matrix);
 };
 
 }  // namespace alphaflex

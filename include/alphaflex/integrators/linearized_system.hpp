@@ -23,6 +23,10 @@ struct NewtonOptions {
   /// exceeds max_contraction, when h changes, or after a checkpoint (generalized_alpha.hpp).
   bool modified = false;
   double max_contraction = 0.5;  ///< θ above which S_t is assembled and factored afresh
+  /// Adaptive steps: the coordinate correction must also be ≤ step_atol + step_rtol‖q‖∞ (not below
+  /// the round-off level 10⁴ε‖q‖∞), a fraction of the step's local error tolerance, so that what
+  /// Newton leaves stays out of the error estimate (docs/theory/adaptive_steps.md). < 0: off.
+  double step_atol = -1.0, step_rtol = 0.0;
 };
 
 struct NewtonRecord {

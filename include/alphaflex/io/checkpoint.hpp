@@ -30,6 +30,16 @@ struct RunPosition {
   long long newton_total = 0, newton_max = 0, step_cuts = 0;
   double h_min = 0.0;
   long long last_written = 0;    ///< the step of the last output step
+  /// The step controller's state (driver/step_controller.hpp) and the step size the auxiliary
+  /// vector a belongs to; `controller` is false for a checkpoint written before they were kept.
+  bool controller = false;
+  double t_anchor = 0.0, h_anchor = 0.0, error_prev = 1.0, h_max = 0.0, h_auxiliary = 0.0;
+  long long k = 0, accepted = 0, rejected = 0;
+  /// The adaptive error estimator's history (driver/error_estimator.hpp): the mean velocities of
+  /// the last `history_count` (≤ 2) accepted steps, local vectors, and their step sizes.
+  long long history_count = 0;
+  double history_h1 = 0.0, history_h2 = 0.0;
+  Eigen::VectorXd history_m1, history_m2;
   ResultsPosition results;       ///< committed sensor rows, output steps and parts
 };
 
@@ -37,6 +47,7 @@ struct Checkpoint {
   MechanicalState state;      ///< this rank's subdomain's state
   Eigen::VectorXd auxiliary;  ///< the auxiliary variable a, local
   RunPosition position;
+  double scene_h = 0.0;       ///< solver.h of the run that wrote it
   /// Settings that differ from the checkpointed run's (the restart goes on, but its results will
   /// not be those of the uninterrupted run).
   std::vector<std::string> warnings;

@@ -31,6 +31,12 @@ struct RunSettings {
   /// (0: off, the run stops at the first failure); h grows back by doubling after 4 good steps.
   int step_cuts = 0;
   double t_end = 1.0;   ///< final time (s)
+  /// Adaptive steps (solver.tolerance: rtol, atol; 0, 0: fixed steps), bounds of h (s; 0: defaults).
+  double tolerance_rtol = 0.0, tolerance_atol = 0.0, h_min = 0.0, h_max = 0.0;
+  double output_dt = 0.0;  ///< fields at multiples of this time (s; 0: every `output_every` steps)
+  /// Times where a load's or driver's time function has a kink (Reader::breakpoints), sorted:
+  /// adaptive steps land on them.
+  std::vector<double> breakpoints;
   int output_every = 1; ///< HDF5 output every N steps (sensors: every step)
   double progress_interval = 30.0;  ///< s of wall time between progress lines in batch logs (0: none)
   bool hdf5 = true;

@@ -197,10 +197,15 @@ class Reader {
 
   /// A number, or a time function {type: ..., ...} (the schemas of `time_function_schemas()`).
   TimeFunctionPtr function(const YAML::Node& n, const std::string& key) const;
+  /// The times where the time functions read so far have a kink or a change of formula (ramp and
+  /// smooth_step t0, t1; spin_up T; table t): adaptive steps land on them, so that a short pulse
+  /// is not stepped over (driver/step_controller.hpp).
+  const std::vector<double>& breakpoints() const { return breakpoints_; }
 
   void read_parameters(const YAML::Node& p);
 
  private:
+  mutable std::vector<double> breakpoints_;
   std::string file_;
   std::string option_;
   MeshLoader mesh_loader_;

@@ -32,7 +32,7 @@ struct StudyRow {
   AlphaParameters params;            ///< alphaflex rows
   bool scaling = true;
   double h = std::numeric_limits<double>::quiet_NaN();    ///< step size (s), alphaflex rows
-  double tol = std::numeric_limits<double>::quiet_NaN();  ///< tolerance, peer rows
+  double tol = std::numeric_limits<double>::quiet_NaN();  ///< tolerance, peer rows and adaptive alphaflex rows
   double t_end = 0.0;
   bool ok = true;
   std::string failure;               ///< first line of the solver's message when !ok

@@ -60,6 +60,9 @@ struct StudySpec {
   std::string name;      ///< base name of the output files
   StudyMode mode = StudyMode::Convergence;
   std::vector<double> h; ///< step sizes (s)
+  /// convergence: tolerances of adaptive runs (solver.tolerance rtol = atol; first step h[0]) of
+  /// every setting, beside its fixed steps
+  std::vector<double> tol;
   double t_end = 0.0;    ///< final time (s); 0: the scene's
   std::vector<SchemeSetting> settings;
   std::vector<ModelVariant> variants;

@@ -1,0 +1,215 @@
+#include "alphaflex/driver/time_loop.hpp"
+
+#include <mpi.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/core/fault_injection.hpp"
+
+namespace alphaflex {
+
+Checkpointer::Checkpointer(const Subdomain& sub, ResultsWriter* writer, std::string path, AlphaParameters parameters, double h,
+                           int keep)
+    : sub_(sub), writer_(writer), path_(std::move(path)), parameters_(std::move(parameters)), h_(h), keep_(keep), last_(MPI_Wtime()) {}
+
+void Checkpointer::write(long n, long last_written, const MechanicalState& s, GeneralizedAlpha& integrator,
+                         const StepController& c, const PositionErrorEstimator& estimator, LoopCounters& counters) {
+  if (!writer_) return;
+  const double t0 = MPI_Wtime();
+  writer_->commit();
+  const StepControllerState& st = c.state();
+  RunPosition pos;
+  pos.step = n;
+  pos.h = st.h;
+  pos.cuts_in_row = st.cuts_in_row;
+  pos.good_steps = st.good_steps;
+  pos.newton_total = counters.newton_total;
+  pos.newton_max = counters.newton_max;
+  pos.step_cuts = st.newton_failures;
+  pos.h_min = st.h_min;
+  pos.last_written = last_written;
+  pos.results = writer_->position();
+  pos.controller = true;
+  pos.t_anchor = st.t_anchor;
+  pos.h_anchor = st.h_anchor;
+  pos.k = st.k;
+  pos.error_prev = st.error_prev;
+  pos.h_max = st.h_max;
+  pos.h_auxiliary = integrator.auxiliary_step();
+  pos.accepted = st.accepted;
+  pos.rejected = st.rejected;
+  const PositionErrorEstimator::History& hist = estimator.history();
+  pos.history_count = hist.count;
+  pos.history_h1 = hist.h1;
+  pos.history_h2 = hist.h2;
+  pos.history_m1 = hist.m1;
+  pos.history_m2 = hist.m2;
+  counters.checkpoint_bytes = write_checkpoint(sub_, path_, s, integrator.auxiliary(), pos, parameters_, h_, keep_);
+  counters.checkpoint = path_;
+  ++counters.checkpoints;
+  counters.checkpoint_time += MPI_Wtime() - t0;
+  last_ = MPI_Wtime();
+  // Modified Newton: a restart has no factorization to keep; refactor here too, so that the run
+  // and its restart take the same iterations bit for bit.
+  integrator.invalidate_factorization();
+}
+
+TimeLoop::TimeLoop(const Subdomain& sub, GeneralizedAlpha& integrator, StepController& controller, Checkpointer& checkpointer,
+                   ResultsWriter* writer, TimeLoopSettings settings)
+    : sub_(sub), integrator_(integrator), controller_(controller), checkpointer_(checkpointer), writer_(writer),
+      settings_(std::move(settings)), estimator_(integrator.parameters().local_error_constant()) {
+  integrator_.set_variable_steps(controller_.variable());
+  integrator_.set_error_estimate(controller_.estimates_error());
+}
+
+void TimeLoop::restore(const Checkpoint& ck, double h) {
+  StepControllerState st = controller_.state();
+  const RunPosition& cp = ck.position;
+  const bool same_h = std::fabs(ck.scene_h - h) <= 1e-14 * h;
+  if (cp.controller && (same_h || controller_.estimates_error())) {
+    st.h = cp.h;
+    st.t_anchor = cp.t_anchor;
+    st.h_anchor = cp.h_anchor;
+    st.k = cp.k;
+    st.error_prev = cp.error_prev;
+    st.h_max = cp.h_max;
+  } else {
+    st.h = controller_.variable() ? std::min(cp.h, h) : h;
+    st.t_anchor = ck.state.t;
+    st.h_anchor = st.h;
+    st.k = 0;
+  }
+  st.cuts_in_row = cp.cuts_in_row;
+  st.good_steps = cp.good_steps;
+  st.newton_failures = cp.step_cuts;
+  st.h_min = cp.h_min;
+  st.accepted = cp.controller ? cp.accepted : cp.step;
+  st.rejected = cp.rejected;
+  controller_.set_state(st);
+  integrator_.set_auxiliary(ck.auxiliary, cp.controller ? cp.h_auxiliary : cp.h);
+  PositionErrorEstimator::History hist;
+  hist.count = static_cast<int>(cp.history_count);
+  hist.h1 = cp.history_h1;
+  hist.h2 = cp.history_h2;
+  hist.m1 = cp.history_m1;
+  hist.m2 = cp.history_m2;
+  estimator_.set_history(hist);
+}
+
+void TimeLoop::observe(long step, const MechanicalState& s, bool fields) {
+  const StepEvent e{step, s, fields, controller_};
+  for (const auto& o : observers_) o(e);
+}
+
+void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopCounters& counters) {
+  const std::string& ck_path = checkpointer_.path();
+  auto of_total = [&](long n) {
+    const long total = controller_.total_steps(counters.steps, s.t);
+    return total >= 0 ? "step " + std::to_string(n) + " of " + std::to_string(total) : "step " + std::to_string(n);
+  };
+  // After every step, the ranks agree whether to checkpoint (rank 0's wall clock, the step count)
+  // and whether to stop (a signal on any rank): one small all-reduce.
+  auto due = [&](long n) {
+    int flags[2] = {settings_.stop_signal ? settings_.stop_signal() : 0, 0};
+    if (settings_.checkpoint_steps > 0 && n % settings_.checkpoint_steps == 0) flags[1] = 1;
+    if (sub_.rank() == 0 && settings_.checkpoint_wall > 0.0 && MPI_Wtime() - checkpointer_.last_wall() >= settings_.checkpoint_wall)
+      flags[1] = 1;
+    if (sub_.size() > 1) MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, sub_.comm());
+    if (flags[1] || flags[0]) checkpointer_.write(n, last_written, s, integrator_, controller_, estimator_, counters);
+    if (!flags[0]) return;
+    // Stop on request: the checkpoint is written; the state reached goes to the results too.
+    if (writer_) {
+      if (last_written != n) writer_->write_fields(s);
+      writer_->finish();
+    }
+    std::ostringstream os;
+    os << "stopped by " << (settings_.signal_name ? settings_.signal_name(flags[0]) : "a signal") << " at t = " << s.t << " s ("
+       << of_total(n) << ")";
+    if (writer_)
+      os << ": checkpoint " << ck_path << ", results in " << writer_->xdmf_path() << ".\n  Go on with: alphaflex run "
+         << settings_.scene_file << " --restart " << ck_path << " -o " << std::filesystem::absolute(settings_.outdir).string()
+         << " (and the same --set options)";
+    else
+      os << " (no output, no checkpoint)";
+    throw Interrupted(os.str());
+  };
+  // A failed step: keep what was computed (a checkpoint of the last converged state, which goes to
+  // the files too) and stop.
+  auto stop = [&](long n, const std::string& what) {
+    if (writer_) {
+      checkpointer_.write(n - 1, last_written, s, integrator_, controller_, estimator_, counters);
+      if (last_written != n - 1) writer_->write_fields(s);
+      writer_->finish();
+    }
+    std::ostringstream os;
+    os << of_total(n) << ": " << what << "\n  The last converged state (t = " << s.t << " s) is written"
+       << (writer_ ? " to " + writer_->xdmf_path() + "; a checkpoint of it to " + ck_path : std::string(" nowhere (no output)"))
+       << ".";
+    throw SolverError(os.str());
+  };
+
+  // The state to go back to when a step is retried (variable policies only: the fixed-step scheme
+  // stops at its first failure and keeps no copy).
+  const bool retries = controller_.variable();
+  if (first_step == 1 && controller_.estimates_error()) estimator_.start(s.v);
+  MechanicalState saved;
+  Eigen::VectorXd saved_a;
+  long n = first_step - 1;
+  bool last = false;
+  while (!last) {
+    const StepPlan p = controller_.plan(s.t);
+    if (retries) {
+      saved = s;
+      saved_a = integrator_.auxiliary();
+    }
+    const double saved_h_aux = integrator_.auxiliary_step();
+    StepReport rep;
+    bool ok = true;
+    const auto newton_tol = controller_.newton_tolerance(p.h);
+    integrator_.set_step_newton_tolerance(newton_tol.first, newton_tol.second);
+    try {
+      rep = integrator_.step(s, p.h, p.t_next);
+    } catch (const SolverError& e) {
+      if (!controller_.newton_failed(p)) stop(n + 1, e.what());
+      const std::string small = controller_.too_small(p);
+      if (!small.empty()) stop(n + 1, std::string(e.what()) + "\n  " + small);
+      ok = false;
+    }
+    if (fault_injected("internal")) throw std::runtime_error("injected fault (-af_inject_fault internal) at step " + std::to_string(n + 1));
+    if (ok) {
+      counters.newton_total += rep.iterations;  // the work of rejected steps counts too
+      counters.newton_max = std::max(counters.newton_max, rep.iterations);
+    }
+    const bool estimating = ok && controller_.estimates_error();
+    const double local_error = estimating ? estimator_.estimate(sub_, rep.increment, p.h, rep.local_error) : 0.0;
+    if (ok && !controller_.converged(p, controller_.scaled_error(local_error, rep.q_norm, p.h))) {
+      const std::string small = controller_.too_small(p);
+      if (!small.empty()) {
+        s = saved;
+        integrator_.set_auxiliary(saved_a, saved_h_aux);
+        stop(n + 1, "the local error estimate exceeds solver.tolerance: " + small);
+      }
+      ok = false;
+    }
+    if (!ok) {
+      // Retry from the saved state with the controller's smaller h.
+      s = saved;
+      integrator_.set_auxiliary(saved_a, saved_h_aux);
+      continue;
+    }
+    if (estimating) estimator_.accept(rep.increment, p.h);
+    ++n;
+    ++counters.steps;
+    last = p.last;
+    const bool fields = (n % settings_.output_every == 0) || last || p.output;
+    observe(n, s, fields);
+    if (fields) last_written = n;
+    if (!last) due(n);
+  }
+  checkpointer_.write(n, last_written, s, integrator_, controller_, estimator_, counters);  // the end of a run always leaves one
+}
+
+}  // namespace alphaflex
