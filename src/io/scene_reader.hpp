@@ -172,6 +172,7 @@ struct SceneTypes {
 };
 const SceneTypes& planar_types();   ///< scene.cpp
 const SceneTypes& spatial_types();  ///< scene_spatial.cpp
+void add_spatial_force_types(SceneTypes& t);  ///< scene_forces.cpp: spring_damper, bushing (dimension 3)
 
 /// The joint a sensor's `joint` key names (an error naming the key otherwise).
 int sensor_joint(const Item& it);

@@ -479,6 +479,7 @@ const SceneTypes& spatial_types() {
                                                             : "a shell result: `n11 n22 n12` (N/m), `m11 m22 m12` (N·m/m), `q1 q2` (N/m), stresses (Pa)"}}),
           [beam](const Item& it, Sensor& sn) { read_element_output(it, sn, beam); });
     }
+    add_spatial_force_types(t);
     return t;
   }();
   return t;

@@ -1,0 +1,221 @@
+// Spatial force elements in scenes (`dimension: 3`, `forces:`): `spring_damper` and `bushing`
+// (elements/spatial_force_elements.hpp). Registered into spatial_types() by add_spatial_force_types.
+// Keys and units: docs/input.md; theory: docs/theory/force_elements.md.
+#include <Eigen/Eigenvalues>
+#include <memory>
+
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/spatial_force_elements.hpp"
+#include "alphaflex/model/model.hpp"
+#include "scene_reader.hpp"
+
+namespace alphaflex::scene_detail {
+namespace {
+
+/// One end of a force element: its node (−1: the ground) and its frame in the node's frame (world
+/// frame for the ground), and the world pose of that frame at t = 0.
+struct End {
+  int node = -1;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d world_position = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d world_rotation = Eigen::Matrix3d::Identity();
+  bool from_marker = false;
+};
+
+Pose<double> pose_at_start(const Model& m, int node) {
+  if (node < 0) return {Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()};
+  return pose_of(m.node(node).q0.data());
+}
+
+/// End `i` (1 or 2) of an element: `markerI`, or `bodyI` (ground allowed for end 2) with `pointI`
+/// in the body frame (world point for the ground), if `with_point`.
+End read_end(const Item& it, int i, bool with_point) {
+  const std::string n = std::to_string(i), marker = "marker" + n, body = "body" + n, point = "point" + n;
+  End e;
+  if (it.keys.has(marker)) {
+    if (it.keys.has(body) || (with_point && it.keys.has(point)))
+      it.rd.fail(it.keys.node(marker), it.at(marker), "give either " + marker + " or " + body + (with_point ? "/" + point : ""));
+    const std::string name = it.keys.text(marker);
+    const auto found = it.sb.markers.find(name);
+    if (found == it.sb.markers.end()) it.rd.fail(it.keys.node(marker), it.at(marker), "no marker named '" + name + "'");
+    e.node = found->second.node;
+    e.position = found->second.position;
+    e.rotation = found->second.rotation;
+    e.from_marker = true;
+  } else {
+    if (i == 1 && !it.keys.has(body)) it.rd.fail(it.node, it.at(body), "missing (required): " + body + " or " + marker);
+    if (it.keys.has(body)) {
+      e.node = it.sb.body(it.node, body, it.path, i == 2);
+      if (e.node >= 0 && !it.model.node(e.node).spatial())
+        it.rd.fail(it.keys.node(body), it.at(body), "expected a spatial body or beam/shell node");
+    }
+    if (with_point) e.position = it.keys.vec3(point);
+  }
+  const Pose<double> f = pose_at_start(it.model, e.node);
+  e.world_position = f.x + f.R * e.position;
+  e.world_rotation = f.R * e.rotation;
+  return e;
+}
+
+/// The node list of an element between two ends and the markers' slots in it.
+std::vector<int> element_nodes(const Item& it, const End& a, const End& b) {
+  if (a.node == b.node)
+    it.rd.fail(it.node, it.path, "both ends are on " + (a.node < 0 ? std::string("the ground") : "'" + it.model.node(a.node).name + "'") +
+                                     ": a force element needs two different bodies (or one body and the ground)");
+  std::vector<int> nodes;
+  for (const End* e : {&a, &b})
+    if (e->node >= 0) nodes.push_back(e->node);
+  return nodes;
+}
+
+SpatialMarker marker_of(const End& e, int slot) {
+  SpatialMarker m;
+  m.slot = e.node < 0 ? -1 : slot;
+  m.position = e.position;
+  m.rotation = e.rotation;
+  return m;
+}
+
+void read_spring_damper_3d(const Item& it) {
+  const Section& k = it.keys;
+  const End a = read_end(it, 1, true), b = read_end(it, 2, true);
+  const std::vector<int> nodes = element_nodes(it, a, b);
+  const double initial = (b.world_position - a.world_position).norm();
+  if (!(initial > 1e-12))
+    it.rd.fail(it.node, it.path, "the two points coincide at t = 0, so the spring has no direction (a spatial spring acts along the line of its points)");
+  const double rest = k.has("rest_length") ? k.number("rest_length") : initial;
+  const int laws = int(k.has("stiffness")) + int(k.has("force")) + int(k.has("table"));
+  if (laws != 1)
+    it.rd.fail(it.node, it.path, laws == 0 ? "give the force law: stiffness (linear), force (an expression of elongation, rate, t) or table"
+                                           : "give one force law: stiffness, force or table, not several");
+  if (k.has("preload") && !k.has("stiffness"))
+    it.rd.fail(k.node("preload"), it.at("preload"), "a preload goes with `stiffness` (write it into the force expression or table otherwise)");
+  if (k.has("force") && k.has("damping"))
+    it.rd.fail(k.node("damping"), it.at("damping"), "the force expression gives the damping through `rate`; remove `damping`");
+  ScalarForceLaw law;
+  if (k.has("stiffness")) {
+    law = ScalarForceLaw::linear(k.number("stiffness"), k.number("damping", 0.0), rest, k.number("preload", 0.0));
+  } else if (k.has("force")) {
+    try {
+      law = ScalarForceLaw::expression(
+          std::make_shared<ExpressionFunction>(k.text("force"), it.rd.scope(), std::vector<std::string>{"elongation", "rate", "t"}),
+          rest);
+    } catch (const std::invalid_argument& e) {
+      it.rd.fail(k.node("force"), it.at("force"), e.what());
+    }
+  } else {
+    const YAML::Node t = k.node("table");
+    if (!t.IsSequence() || t.size() < 2)
+      it.rd.fail(t, it.at("table"), "expected a list of at least 2 pairs [elongation (m), force (N)]");
+    std::vector<double> x, f;
+    for (size_t i = 0; i < t.size(); ++i) {
+      const Eigen::Vector2d p = it.rd.vec2(t[i], it.at("table[" + std::to_string(i) + "]"));
+      if (i > 0 && !(p.x() > x.back()))
+        it.rd.fail(t[i], it.at("table[" + std::to_string(i) + "]"), "elongations must increase strictly from one pair to the next");
+      x.push_back(p.x());
+      f.push_back(p.y());
+    }
+    law = ScalarForceLaw::table(make_table(x, f), k.number("damping", 0.0), rest);
+  }
+  it.model.add_element(std::make_unique<SpatialSpringDamper>(it.name, nodes, marker_of(a, 0), marker_of(b, 1), law));
+}
+
+/// A 6×6 matrix: 6 numbers (the diagonal) or 6 rows of 6; symmetric and positive semi-definite.
+Bushing::Matrix6 read_matrix6(const Item& it, const std::string& key, const char* units) {
+  Bushing::Matrix6 m = Bushing::Matrix6::Zero();
+  if (!it.keys.has(key)) return m;
+  const YAML::Node n = it.keys.node(key);
+  const std::string at = it.at(key);
+  const std::string expected = std::string("expected 6 numbers (the diagonal) or 6 rows of 6 numbers (") + units + ")";
+  if (!n.IsSequence() || n.size() != 6) it.rd.fail(n, at, expected);
+  if (n[0].IsScalar()) {
+    for (int i = 0; i < 6; ++i) m(i, i) = it.rd.number(n[i], at + "[" + std::to_string(i) + "]");
+  } else {
+    for (int i = 0; i < 6; ++i) {
+      const YAML::Node row = n[i];
+      const std::string rp = at + "[" + std::to_string(i) + "]";
+      if (!row.IsSequence() || row.size() != 6) it.rd.fail(row, rp, expected);
+      for (int j = 0; j < 6; ++j) m(i, j) = it.rd.number(row[j], rp + "[" + std::to_string(j) + "]");
+    }
+  }
+  const double scale = m.cwiseAbs().maxCoeff();
+  if ((m - m.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
+    it.rd.fail(n, at, "the matrix must be symmetric (a bushing stores the energy ½ εᵀKε and dissipates ½ ε̇ᵀCε̇)");
+  const Eigen::SelfAdjointEigenSolver<Bushing::Matrix6> es(m);
+  const double lowest = es.eigenvalues().minCoeff();
+  if (lowest < -1e-12 * scale) {
+    std::ostringstream os;
+    os << "the matrix must be positive semi-definite, but it has the eigenvalue " << lowest
+       << " (direction [" << es.eigenvectors().col(0).transpose() << "] in (u, γ)): it would push the bodies apart instead of holding them";
+    it.rd.fail(n, at, os.str());
+  }
+  return m;
+}
+
+void read_bushing(const Item& it) {
+  const Section& k = it.keys;
+  const End a = read_end(it, 1, false), b = read_end(it, 2, false);
+  const std::vector<int> nodes = element_nodes(it, a, b);
+  // The bushing frame at t = 0: `location` and `orientation` (world), else marker1's frame, else
+  // body1's reference point and the world axes.
+  const Eigen::Vector3d location = k.has("location") ? k.vec3("location") : a.from_marker ? a.world_position
+                                                                                          : pose_at_start(it.model, a.node).x;
+  if (a.from_marker && k.has("location"))
+    it.rd.fail(k.node("location"), it.at("location"), "marker1 fixes the location; remove one of them");
+  Eigen::Matrix3d frame = a.from_marker ? a.world_rotation : Eigen::Matrix3d::Identity();
+  if (k.has("orientation")) {
+    if (a.from_marker) it.rd.fail(k.node("orientation"), it.at("orientation"), "marker1 fixes the orientation; remove one of them");
+    frame = exp_so3<double>(k.vec3("orientation"));
+  }
+  if (b.from_marker && ((b.world_position - location).norm() > 1e-9 * std::max(1.0, location.norm()) ||
+                        (b.world_rotation - frame).norm() > 1e-9))
+    it.rd.fail(k.node("marker2"), it.at("marker2"), "must coincide with the bushing frame at t = 0 (a bushing is unloaded at t = 0)");
+  // Both markers are the bushing frame at t = 0, each in its node's frame.
+  const auto marker = [&](const End& e, int slot) {
+    const Pose<double> f = pose_at_start(it.model, e.node);
+    SpatialMarker m;
+    m.slot = e.node < 0 ? -1 : slot;
+    m.position = f.R.transpose() * (location - f.x);
+    m.rotation = f.R.transpose() * frame;
+    return m;
+  };
+  it.model.add_element(std::make_unique<Bushing>(it.name, nodes, marker(a, 0), marker(b, 1), read_matrix6(it, "stiffness", "N/m, N·m/rad"),
+                                                 read_matrix6(it, "damping", "N·s/m, N·m·s/rad")));
+}
+
+}  // namespace
+
+void add_spatial_force_types(SceneTypes& t) {
+  const std::vector<Key> ends{
+      {"body1", KeyType::Text, "–", "– (or `marker1`)", "the first body or beam/shell node; not `ground`"},
+      {"marker1", KeyType::Text, "–", "–", "a marker of a body instead of body1 (and point1)"},
+      {"body2", KeyType::Text, "–", "`ground`", "the second body, node or `ground`; different from body1"},
+      {"marker2", KeyType::Text, "–", "–", "a marker of a body instead of body2 (and point2)"}};
+  std::vector<Key> spring = ends;
+  spring.insert(spring.end(), {
+      {"point1", KeyType::Vec3, "m", "[0, 0, 0]", "point of body1, body frame"},
+      {"point2", KeyType::Vec3, "m", "[0, 0, 0]", "point of body2, body frame (a world point for the ground)"},
+      {"stiffness", KeyType::Number, "N/m", "–", "linear law: tension k (L − L0) + c L̇ + preload", Range::non_negative()},
+      {"damping", KeyType::Number, "N·s/m", "0", "c, with `stiffness` or `table`", Range::non_negative()},
+      {"rest_length", KeyType::Number, "m", "the length at t = 0", "L0", Range::non_negative()},
+      {"preload", KeyType::Number, "N", "0", "tension at L = L0, with `stiffness`"},
+      {"force", KeyType::Text, "N", "–", "tension as an expression of `elongation` L − L0 (m), `rate` L̇ (m/s) and `t` (s), and `parameters`"},
+      {"table", KeyType::List, "m, N", "–", "tension F(L − L0) through the pairs, linear between them, constant beyond; plus c L̇",
+       {}, "", "[[elongation, force], ...]"}});
+  t.loads.add("spring_damper", type_schema("forces.3d.spring_damper",
+      "`spring_damper` between two points: tension along the line of the points, one law of stiffness, force or table", spring),
+      read_spring_damper_3d);
+  std::vector<Key> bushing = ends;
+  bushing.insert(bushing.end(), {
+      {"location", KeyType::Vec3, "m", "marker1's origin, else body1's reference point", "origin of the bushing frame at t = 0 (world)"},
+      {"orientation", KeyType::Vec3, "rad", "marker1's axes, else the world axes", "bushing frame at t = 0: rotation vector [rx, ry, rz] (world)"},
+      {"stiffness", KeyType::List, "N/m, N·m/rad", kRequired, "K on (u, γ) in the bushing frame of body1: 6 numbers (diagonal) or 6 rows of 6; symmetric, positive semi-definite",
+       {}, "", "6 numbers or 6×6 rows"},
+      {"damping", KeyType::List, "N·s/m, N·m·s/rad", "0", "C on (u̇, γ̇), as stiffness", {}, "", "6 numbers or 6×6 rows"}});
+  t.loads.add("bushing", type_schema("forces.3d.bushing",
+      "`bushing`: 6×6 stiffness and damping between two frames that coincide at t = 0 (a rubber mount, a compliant joint)", bushing),
+      read_bushing);
+}
+
+}  // namespace alphaflex::scene_detail

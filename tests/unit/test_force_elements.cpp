@@ -1,0 +1,293 @@
+// Spatial force elements (elements/spatial_force_elements.hpp) and the expressions with gradients
+// they use (core/expression.hpp): r against the hand-written generalized force, K = ∂r/∂δ on the
+// group and C = ∂r/∂q̇ against central differences, and the physics against closed forms (a damped
+// spring–mass in 3D, a bushing's static stiffness in every direction).
+#include <gtest/gtest.h>
+
+#include <cfloat>
+#include <cmath>
+#include <random>
+
+#include "alphaflex/core/expression.hpp"
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/spatial_force_elements.hpp"
+#include "test_support.hpp"
+
+using namespace alphaflex;
+using namespace alphaflex::testing;
+
+namespace {
+
+constexpr double kRelTol = 1e-6;  // FD vs exact, relative to the matrix norm (FD error ~1e-9 at h = 1e-6)
+constexpr int kSamples = 8;
+
+double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+Eigen::VectorXd random_vector(std::mt19937& rng, int n, double a, double b) {
+  Eigen::VectorXd x(n);
+  for (int i = 0; i < n; ++i) x[i] = uniform(rng, a, b);
+  return x;
+}
+Pose<double> random_pose(std::mt19937& rng, double max_angle = 3.0) {
+  const Eigen::Vector3d w = random_vector(rng, 3, -1.0, 1.0);
+  return {random_vector(rng, 3, -1.0, 1.0), exp_so3<double>(Eigen::Vector3d(uniform(rng, 0.0, max_angle) * w.normalized()))};
+}
+Eigen::VectorXd stored(const std::vector<Pose<double>>& poses) {
+  Eigen::VectorXd q(7 * poses.size());
+  for (size_t k = 0; k < poses.size(); ++k) store_pose(poses[k].x, poses[k].R, q.data() + 7 * k);
+  return q;
+}
+SpatialMarker marker(int slot, const Eigen::Vector3d& p, const Eigen::Vector3d& w = Eigen::Vector3d::Zero()) {
+  SpatialMarker m;
+  m.slot = slot;
+  m.position = p;
+  m.rotation = exp_so3<double>(w);
+  return m;
+}
+
+/// K and C of `e` at `s` against central differences (on the group for K, h = 1e-6); returns the
+/// worst relative discrepancy.
+double check_tangents(const Element& e, const LocalState& s) {
+  const LocalResidual t = element_tangents(e, s);
+  const Eigen::MatrixXd K = central_differences_on_frames(element_residual_of(e, s, Wrt::q), s.q, fixed_fd_step(1e-6));
+  const Eigen::MatrixXd C = central_differences(element_residual_of(e, s, Wrt::v), s.v, fixed_fd_step(1e-6));
+  const double k_err = (t.K - K).norm() / std::max(K.norm(), 1e-300);
+  const double c_err = (t.C - C).norm() / std::max(C.norm(), 1e-300);
+  EXPECT_LE(k_err, kRelTol) << "K exact\n" << t.K << "\nFD\n" << K;
+  EXPECT_LE(c_err, kRelTol) << "C exact\n" << t.C << "\nFD\n" << C;
+  EXPECT_EQ(t.M.norm(), 0.0);
+  return std::max(k_err, c_err);
+}
+
+LocalState state(const Eigen::VectorXd& q, std::mt19937& rng) {
+  const int n = static_cast<int>(q.size() / 7 * 6);
+  return local_state(q, random_vector(rng, n, -2.0, 2.0), Eigen::VectorXd::Zero(n));
+}
+
+std::vector<std::pair<std::string, ScalarForceLaw>> spring_laws() {
+  const ExpressionScope scope{{"k3", 250.0}};
+  return {{"linear with damping and preload", ScalarForceLaw::linear(300.0, 7.0, 0.8, 25.0)},
+          {"expression of elongation, rate and t",
+           ScalarForceLaw::expression(std::make_shared<ExpressionFunction>(
+                                          "200*elongation + k3*elongation^3 + 5*rate*(1 + elongation^2) + 3*sin(t)",
+                                          scope, std::vector<std::string>{"elongation", "rate", "t"}),
+                                      0.6)},
+          {"table and damping", ScalarForceLaw::table(make_table({-2.0, 0.0, 0.5, 3.0}, {-900.0, 0.0, 100.0, 1500.0}), 4.0, 0.7)}};
+}
+
+}  // namespace
+
+TEST(ExpressionFunction, GradientMatchesCentralDifferencesAndUnknownNamesListTheVariables) {
+  const ExpressionScope scope{{"a", 1.5}};
+  const std::vector<std::string> vars{"x", "y", "t"};
+  for (const char* text : {"a*x^3 - 2*y*x + t", "sin(x)*exp(-y) + atan2(y, x)", "sqrt(x^2 + y^2) + hypot(x, t)",
+                           "x^y + log(x) / (1 + t^2)", "max(x, y) - min(x, 2*y) + abs(x - 3)", "-(x - y)^2 / tan(t + 1)"}) {
+    SCOPED_TRACE(text);
+    const ExpressionFunction f(text, scope, vars);
+    const Eigen::Vector3d x(1.3, 0.4, 0.2);
+    Eigen::Vector3d g;
+    const double v = f.value(x.data(), g.data());
+    EXPECT_EQ(v, f.value(x.data()));  // the gradient pass computes the same value
+    EXPECT_EQ(v, evaluate_expression(text, {{"a", 1.5}, {"x", 1.3}, {"y", 0.4}, {"t", 0.2}}));
+    const Eigen::MatrixXd fd = central_differences(
+        [&](const Eigen::VectorXd& p) { return Eigen::VectorXd::Constant(1, f.value(p.data())); }, x, fixed_fd_step(1e-6));
+    EXPECT_LE((fd.row(0).transpose() - g).norm(), 1e-8 * std::max(1.0, g.norm())) << g.transpose() << " vs " << fd;
+  }
+  try {
+    ExpressionFunction("k*elongation + c*rate", {{"k", 1.0}}, {"elongation", "rate", "t"});
+    FAIL() << "an unknown name was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown name 'c' (the variables here are elongation, rate, t"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SpatialSpringDamper, ResidualIsTheTensionAlongTheLineOfItsPoints) {
+  // r_A = [−N e; −s_A × R_Aᵀ(N e)], r_B = [N e; s_B × R_Bᵀ(N e)] with e = (p_B − p_A)/L and
+  // N = k (L − L0) + c L̇ + f0, L̇ = e·(ṗ_B − ṗ_A), ṗ = ẋ + R (Ω × s).
+  std::mt19937 rng(2001);
+  const double k = 300.0, c = 7.0, L0 = 0.8, f0 = 25.0;
+  const Eigen::Vector3d sA(0.2, -0.1, 0.3), sB(-0.4, 0.1, 0.05);
+  const SpatialSpringDamper spring("s", {0, 1}, marker(0, sA), marker(1, sB), ScalarForceLaw::linear(k, c, L0, f0));
+  for (int i = 0; i < kSamples; ++i) {
+    const Pose<double> A = random_pose(rng), B = random_pose(rng);
+    const LocalState s = state(stored({A, B}), rng);
+    const Eigen::Vector3d pA = A.x + A.R * sA, pB = B.x + B.R * sB;
+    const Eigen::Vector3d vA = s.v.segment<3>(0) + A.R * s.v.segment<3>(3).cross(sA);
+    const Eigen::Vector3d vB = s.v.segment<3>(6) + B.R * s.v.segment<3>(9).cross(sB);
+    const double L = (pB - pA).norm();
+    const Eigen::Vector3d e = (pB - pA) / L;
+    const double N = k * (L - L0) + c * e.dot(vB - vA) + f0;
+    Eigen::VectorXd r(12);
+    r << -N * e, -sA.cross(A.R.transpose() * (N * e)), N * e, sB.cross(B.R.transpose() * (N * e));
+    const Eigen::VectorXd got = element_residual(spring, s);
+    EXPECT_LE((got - r).norm(), 1e-12 * r.norm()) << got.transpose() << "\n" << r.transpose();
+    Eigen::VectorXd out;
+    spring.output(s, out);
+    EXPECT_NEAR(out[0], L, 1e-14);
+    EXPECT_NEAR(out[3], N, 1e-11 * std::fabs(N));
+  }
+}
+
+TEST(SpatialSpringDamper, TangentsMatchFiniteDifferencesOnTheGroup) {
+  std::mt19937 rng(2002);
+  for (const auto& [label, law] : spring_laws()) {
+    double worst = 0.0;
+    for (const bool ground : {false, true}) {
+      SCOPED_TRACE(label + (ground ? ", to the ground" : ", between two nodes"));
+      const SpatialSpringDamper spring("s", ground ? std::vector<int>{0} : std::vector<int>{0, 1},
+                                       marker(0, {0.2, -0.1, 0.3}), marker(ground ? -1 : 1, {-0.4, 0.1, 1.05}), law);
+      for (int i = 0; i < kSamples; ++i) {
+        const Eigen::VectorXd q = ground ? stored({random_pose(rng)}) : stored({random_pose(rng), random_pose(rng)});
+        LocalState s = state(q, rng);
+        s.t = uniform(rng, 0.0, 2.0);
+        worst = std::max(worst, check_tangents(spring, s));
+      }
+    }
+    std::printf("[ FD       ] worst rel. error %.1e  spring_damper, %s\n", worst, label.c_str());
+  }
+}
+
+TEST(SpatialSpringDamper, RefusesToEvaluateWhereItsPointsCoincide) {
+  const SpatialSpringDamper spring("s", {0}, marker(0, Eigen::Vector3d::Zero()), marker(-1, {1.0, 2.0, 3.0}),
+                                   ScalarForceLaw::linear(1.0, 0.0, 1.0, 0.0));
+  const Eigen::VectorXd q = stored({{Eigen::Vector3d(1.0, 2.0, 3.0), Eigen::Matrix3d::Identity()}});
+  LocalResidual out;
+  out.reset(6, true);
+  try {
+    spring.evaluate(local_state(q, Eigen::VectorXd::Zero(6), Eigen::VectorXd::Zero(6)), out, true);
+    FAIL() << "no error";
+  } catch (const ConfigurationError& e) {
+    EXPECT_NE(std::string(e.what()).find("spring_damper 's': its two points coincide"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Bushing, IsUnloadedWhereItsFramesCoincideAndTangentsMatchFiniteDifferences) {
+  std::mt19937 rng(2003);
+  Bushing::Matrix6 K, C;
+  {
+    const Eigen::MatrixXd a = random_vector(rng, 36, -1.0, 1.0).reshaped(6, 6), b = random_vector(rng, 36, -1.0, 1.0).reshaped(6, 6);
+    K = 1e3 * a * a.transpose() + 500.0 * Bushing::Matrix6::Identity();
+    C = 10.0 * b * b.transpose();
+  }
+  const Eigen::Vector3d sA(0.1, 0.2, -0.3), wA(0.3, -0.2, 0.5);
+  double worst = 0.0;
+  for (const bool ground : {false, true}) {
+    SCOPED_TRACE(ground ? "to the ground" : "between two nodes");
+    for (int i = 0; i < kSamples; ++i) {
+      const Pose<double> A = random_pose(rng);
+      // B's marker: the bushing frame of A at t = 0, seen from B (so ε = 0 there), then B moved.
+      const Pose<double> frame{A.x + A.R * sA, A.R * exp_so3<double>(wA)};
+      const Pose<double> B0 = random_pose(rng);
+      SpatialMarker mb;
+      mb.slot = ground ? -1 : 1;
+      mb.position = ground ? frame.x : Eigen::Vector3d(B0.R.transpose() * (frame.x - B0.x));
+      mb.rotation = ground ? frame.R : Eigen::Matrix3d(B0.R.transpose() * frame.R);
+      const Bushing bushing("b", ground ? std::vector<int>{0} : std::vector<int>{0, 1}, marker(0, sA, wA), mb, K, C);
+      const Eigen::VectorXd q0 = ground ? stored({A}) : stored({A, B0});
+      // ε = 0 where the frames coincide: r = 0 at rest.
+      EXPECT_LE(element_residual(bushing, local_state(q0, Eigen::VectorXd::Zero(q0.size() / 7 * 6),
+                                                      Eigen::VectorXd::Zero(q0.size() / 7 * 6))).norm(), 1e-10);
+      // Then a deflection (up to 0.4 rad, 0.2 m) and random velocities.
+      const Eigen::VectorXd d = random_vector(rng, static_cast<int>(q0.size() / 7 * 6), -0.2, 0.2) * (i % 2 ? 2.0 : 1.0);
+      const LocalState s = state(retracted_frames(q0, d), rng);
+      worst = std::max(worst, check_tangents(bushing, s));
+    }
+  }
+  std::printf("[ FD       ] worst rel. error %.1e  bushing\n", worst);
+}
+
+TEST(Bushing, StaticStiffnessInEveryDirectionMatchesTheClosedForm) {
+  // A body held to the ground by a bushing at its centre (bushing frame turned by `orientation`),
+  // loaded by a dead force or moment along one axis of the bushing frame. Closed forms:
+  //   translation along axis i:  u_i = F / k_i exactly (no coupling with a diagonal K);
+  //   rotation about axis i:     M = k_i · 2 tan(φ/2) / cos²(φ/2) (γ = 2 tan(φ/2), M = (∂γ/∂φ) k γ),
+  // φ ≈ 0.35 rad here, where the linear estimate M/k would be 3 % off.
+  const Eigen::Vector3d w(0.3, -0.4, 0.5);  // bushing frame: world axes turned by exp(w^)
+  const Eigen::Matrix3d F = exp_so3<double>(w);
+  const double k[6] = {2.0e4, 3.0e4, 5.0e4, 800.0, 1200.0, 1500.0};
+  const double load[6] = {150.0, -240.0, 300.0, 300.0, -480.0, 600.0};
+  for (int i = 0; i < 6; ++i) {
+    SCOPED_TRACE("direction " + std::to_string(i));
+    const Eigen::Vector3d dir = F.col(i % 3) * load[i];
+    std::ostringstream y;
+    y.precision(17);
+    y << "name: bushing_static\ndimension: 3\nsolver: {analysis: static, static: {steps: 4}}\n"
+      << "bodies:\n  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [0.5, -0.2, 1.0]}\n"
+      << "forces:\n  - {name: mount, type: bushing, body1: b, orientation: [" << w.x() << ", " << w.y() << ", " << w.z()
+      << "], stiffness: [" << k[0] << ", " << k[1] << ", " << k[2] << ", " << k[3] << ", " << k[4] << ", " << k[5] << "]}\n"
+      << "  - {name: load, type: " << (i < 3 ? "force" : "moment") << ", body: b, value: [" << dir.x() << ", " << dir.y()
+      << ", " << dir.z() << "]}\n"
+      << "sensors:\n";
+    for (const char* c : {"x", "y", "z"}) {
+      y << "  - {name: u" << c << ", type: point_displacement, body: b, component: " << c << "}\n";
+      y << "  - {name: r" << c << ", type: body_rotation, body: b, component: " << c << "}\n";
+    }
+    Scene scene = read_scene_text(y.str(), "bushing_static.yaml");
+    RunOptions opt;
+    opt.write_results = false;
+    opt.verbose = false;
+    const RunSummary r = run_simulation(scene, opt, PETSC_COMM_WORLD);
+    const Eigen::Vector3d u(final_value(r, "ux"), final_value(r, "uy"), final_value(r, "uz"));
+    const Eigen::Vector3d rot(final_value(r, "rx"), final_value(r, "ry"), final_value(r, "rz"));
+    if (i < 3) {
+      const Eigen::Vector3d expected = F.col(i) * (load[i] / k[i]);
+      EXPECT_LE((u - expected).norm(), 1e-9 * expected.norm()) << u.transpose() << " vs " << expected.transpose();
+      EXPECT_LE(rot.norm(), 1e-12);
+      std::printf("[ closed   ] bushing translation %d: |u − F/k| / |u| = %.1e\n", i, (u - expected).norm() / expected.norm());
+    } else {
+      const double phi = rot.dot(F.col(i - 3));  // the rotation is about the bushing axis
+      EXPECT_LE((rot - phi * F.col(i - 3)).norm(), 1e-10 * std::fabs(phi));
+      const double c = std::cos(phi / 2);
+      const double moment = k[i] * 2.0 * std::tan(phi / 2) / (c * c);
+      EXPECT_LE(std::fabs(moment - load[i]), 1e-9 * std::fabs(load[i])) << "φ = " << phi;
+      EXPECT_GT(std::fabs(phi - load[i] / k[i]), 0.01 * std::fabs(phi));  // the linear estimate is not it
+      EXPECT_LE(u.norm(), 1e-12);
+      std::printf("[ closed   ] bushing rotation %d: φ = %.6f rad, |M(φ) − M| / |M| = %.1e\n", i - 3, phi,
+                  std::fabs(moment - load[i]) / std::fabs(load[i]));
+    }
+  }
+}
+
+TEST(SpatialSpringDamper, DampedSpringMassIn3DHasTheClosedFormFrequencyAndLogarithmicDecrement) {
+  // A mass m on a spring k with damper c along the oblique line (1, 2, 2)/3 from a ground point,
+  // started 0.1 m beyond its rest length: u(t) = A e^(−ζω t) cos(ω_d t + ψ), ω = √(k/m),
+  // ζ = c / (2√(km)), ω_d = ω √(1 − ζ²), logarithmic decrement δ = ln(u_n / u_{n+1}) over one period
+  // = 2πζ / √(1 − ζ²) (e.g. Thomson & Dahleh, Theory of Vibration, §2.6). ρ∞ = 1 (no numerical
+  // damping), h = T/400: the scheme's period error is O((ωh)²) ≈ 1e-4.
+  const double m = 2.0, k = 800.0, c = 4.0;
+  const double omega = std::sqrt(k / m), zeta = c / (2.0 * std::sqrt(k * m)), omega_d = omega * std::sqrt(1 - zeta * zeta);
+  const double delta = 2 * M_PI * zeta / std::sqrt(1 - zeta * zeta), T = 2 * M_PI / omega_d;
+  std::ostringstream y;
+  y.precision(17);
+  y << "name: spring_mass_3d\ndimension: 3\nsolver: {rho_inf: 1.0, h: " << T / 400 << ", t_end: " << 3.2 * T << "}\n"
+    << "bodies:\n  - {name: m, type: rigid_body, mass: " << m << ", inertia: [0.1, 0.1, 0.1], position: ["
+    << 1.1 / 3 << ", " << 2.2 / 3 << ", " << 2.2 / 3 << "]}\n"
+    << "forces:\n  - {name: s, type: spring_damper, body1: m, body2: ground, stiffness: " << k << ", damping: " << c
+    << ", rest_length: 1.0}\n"
+    << "sensors:\n  - {name: x, type: point_displacement, body: m, component: x}\n";
+  Scene scene = read_scene_text(y.str(), "spring_mass_3d.yaml");
+  RunOptions opt;
+  opt.write_results = false;
+  opt.verbose = false;
+  opt.keep_history = true;
+  const RunSummary r = run_simulation(scene, opt, PETSC_COMM_WORLD);
+  // u along the line = 3 x − 0.1 … the x displacement is u/3 from 0.1/3.
+  std::vector<double> t = r.times_out, u;
+  for (const auto& row : r.sensor_history) u.push_back(3.0 * row[0] + 0.1);
+  // Peaks: parabola through the three samples around each local maximum.
+  std::vector<double> tp, up;
+  for (size_t i = 1; i + 1 < u.size(); ++i)
+    if (u[i] > u[i - 1] && u[i] >= u[i + 1]) {
+      const double a = 0.5 * (u[i + 1] - 2 * u[i] + u[i - 1]), b = 0.5 * (u[i + 1] - u[i - 1]);
+      const double s = -b / (2 * a), h = t[i + 1] - t[i];
+      tp.push_back(t[i] + s * h);
+      up.push_back(u[i] + b * s + a * s * s);
+    }
+  ASSERT_GE(tp.size(), 3u);
+  const double period = (tp[2] - tp[0]) / 2.0, decrement = std::log(up[0] / up[2]) / 2.0;
+  const double period_error = std::fabs(period - T) / T, decrement_error = std::fabs(decrement - delta) / delta;
+  std::printf("[ closed   ] spring-mass 3D: period %.8f s (closed form %.8f, rel. error %.1e), log. decrement %.6f "
+              "(closed form %.6f, rel. error %.1e)\n", period, T, period_error, decrement, delta, decrement_error);
+  EXPECT_LE(period_error, 2e-4);
+  EXPECT_LE(decrement_error, 2e-3);
+}
