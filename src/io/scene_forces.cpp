@@ -147,7 +147,8 @@ Bushing::Matrix6 read_matrix6(const Item& it, const std::string& key, const char
   if (lowest < -1e-12 * scale) {
     std::ostringstream os;
     os << "the matrix must be positive semi-definite, but it has the eigenvalue " << lowest
-       << " (direction [" << es.eigenvectors().col(0).transpose() << "] in (u, γ)): it would push the bodies apart instead of holding them";
+       << " (direction [" << es.eigenvectors().col(0).transpose().format(Eigen::IOFormat(4, Eigen::DontAlignCols, ", ", ", "))
+       << "] of (u, γ)): it would push the bodies apart instead of holding them";
     it.rd.fail(n, at, os.str());
   }
   return m;
@@ -184,15 +185,38 @@ void read_bushing(const Item& it) {
                                                  read_matrix6(it, "damping", "N·s/m, N·m·s/rad")));
 }
 
+/// The force elements a `force_output` sensor can read (their element names are the scene's).
+bool is_force_element(const Element& e) {
+  const std::string type = e.type();
+  return type == "spring_damper" || type == "bushing";
+}
+
+void read_force_output(const Item& it, Sensor& sn) {
+  const std::string name = it.keys.text("element");
+  const auto& elements = it.model.elements();
+  std::string known;
+  for (size_t e = 0; e < elements.size(); ++e) {
+    if (!is_force_element(*elements[e])) continue;
+    if (elements[e]->name() == name) sn.element = static_cast<int>(e);
+    known += (known.empty() ? "" : ", ") + elements[e]->name();
+  }
+  if (sn.element < 0)
+    it.rd.fail(it.keys.node("element"), it.at("element"), "no force element named '" + name + "' in `forces` (its force elements: " +
+                                                            (known.empty() ? "none" : known) + ")");
+  sn.kind = Sensor::Kind::ElementOutput;
+  sn.component = it.rd.choice(it.keys.node("component"), it.at("component"), elements[static_cast<size_t>(sn.element)]->output_names());
+}
+
 }  // namespace
 
 void add_spatial_force_types(SceneTypes& t) {
-  const std::vector<Key> ends{
-      {"body1", KeyType::Text, "–", "– (or `marker1`)", "the first body or beam/shell node; not `ground`"},
-      {"marker1", KeyType::Text, "–", "–", "a marker of a body instead of body1 (and point1)"},
-      {"body2", KeyType::Text, "–", "`ground`", "the second body, node or `ground`; different from body1"},
-      {"marker2", KeyType::Text, "–", "–", "a marker of a body instead of body2 (and point2)"}};
-  std::vector<Key> spring = ends;
+  const auto ends = [](const char* what) -> std::vector<Key> {
+    return {{"body1", KeyType::Text, "–", "– (or `marker1`)", "the first body or beam/shell node; not `ground`"},
+            {"marker1", KeyType::Text, "–", "–", std::string("a marker of a body instead of body1") + what},
+            {"body2", KeyType::Text, "–", "`ground`", "the second body, node or `ground`; different from body1"},
+            {"marker2", KeyType::Text, "–", "–", std::string("a marker of a body instead of body2") + what}};
+  };
+  std::vector<Key> spring = ends(" and its point");
   spring.insert(spring.end(), {
       {"point1", KeyType::Vec3, "m", "[0, 0, 0]", "point of body1, body frame"},
       {"point2", KeyType::Vec3, "m", "[0, 0, 0]", "point of body2, body frame (a world point for the ground)"},
@@ -206,7 +230,7 @@ void add_spatial_force_types(SceneTypes& t) {
   t.loads.add("spring_damper", type_schema("forces.3d.spring_damper",
       "`spring_damper` between two points: tension along the line of the points, one law of stiffness, force or table", spring),
       read_spring_damper_3d);
-  std::vector<Key> bushing = ends;
+  std::vector<Key> bushing = ends(" (marker2: at the bushing frame at t = 0)");
   bushing.insert(bushing.end(), {
       {"location", KeyType::Vec3, "m", "marker1's origin, else body1's reference point", "origin of the bushing frame at t = 0 (world)"},
       {"orientation", KeyType::Vec3, "rad", "marker1's axes, else the world axes", "bushing frame at t = 0: rotation vector [rx, ry, rz] (world)"},
@@ -216,6 +240,11 @@ void add_spatial_force_types(SceneTypes& t) {
   t.loads.add("bushing", type_schema("forces.3d.bushing",
       "`bushing`: 6×6 stiffness and damping between two frames that coincide at t = 0 (a rubber mount, a compliant joint)", bushing),
       read_bushing);
+  t.sensors.add("force_output", type_schema("sensors.3d.force_output", "`force_output`: a result of a force element of `forces`", {
+      {"element", KeyType::Text, "–", kRequired, "the name of a `spring_damper` or `bushing`"},
+      {"component", KeyType::Text, "–", kRequired,
+       "spring_damper: `length` (m), `elongation` (m), `rate` (m/s), `tension` (N); bushing: `deflection[0..5]` (u in m, γ in rad), `force[0..5]` (K ε + C ε̇: N, N·m)"}}),
+      read_force_output);
 }
 
 }  // namespace alphaflex::scene_detail

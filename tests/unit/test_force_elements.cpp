@@ -291,3 +291,72 @@ TEST(SpatialSpringDamper, DampedSpringMassIn3DHasTheClosedFormFrequencyAndLogari
   EXPECT_LE(period_error, 2e-4);
   EXPECT_LE(decrement_error, 2e-3);
 }
+
+TEST(ForceElementScenes, BadInputIsRefusedNamingTheKey) {
+  const std::string head =
+      "name: bad\ndimension: 3\nsolver: {h: 0.01, t_end: 0.02}\n"
+      "bodies:\n  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [0, 0, 1]}\n"
+      "forces:\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"  - {name: mount, type: bushing, body1: b, stiffness: [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0], "
+       "[0, 0, 0, 1, 2, 0], [0, 0, 0, 2, 1, 0], [0, 0, 0, 0, 0, 1]]}\n",
+       "bad.yaml:7: forces[mount].stiffness: the matrix must be positive semi-definite, but it has the eigenvalue -1"},
+      {"  - {name: mount, type: bushing, body1: b, stiffness: [1, 1, 1, 1, 1, 1], damping: [[1, 2, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], "
+       "[0, 0, 1, 0, 0, 0], [0, 0, 0, 1, 0, 0], [0, 0, 0, 0, 1, 0], [0, 0, 0, 0, 0, 1]]}\n",
+       "forces[mount].damping: the matrix must be symmetric"},
+      {"  - {name: mount, type: bushing, body1: b, stiffness: [1, 1, 1]}\n",
+       "forces[mount].stiffness: expected 6 numbers (the diagonal) or 6 rows of 6 numbers (N/m, N·m/rad)"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 3], stiffness: 10, force: \"elongation\"}\n",
+       "forces[s]: give one force law: stiffness, force or table, not several"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 3]}\n",
+       "forces[s]: give the force law: stiffness (linear), force (an expression of elongation, rate, t) or table"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 3], force: \"k*elongation\"}\n",
+       "forces[s].force: in expression 'k*elongation' at character 1: unknown name 'k' (the variables here are elongation, rate, t"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 1], stiffness: 10}\n",
+       "forces[s]: the two points coincide at t = 0"},
+      {"  - {name: s, type: spring_damper, body1: b, body2: b, point2: [0, 0, 3], stiffness: 10}\n",
+       "forces[s]: both ends are on 'b'"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 3], table: [[0, 0], [0, 1]]}\n",
+       "forces[s].table[1]: elongations must increase strictly"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 3], force: \"elongation\", damping: 2}\n",
+       "forces[s].damping: the force expression gives the damping through `rate`"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 3], stiffness: 10}\n"
+       "sensors:\n  - {name: n, type: force_output, element: spring, component: tension}\n",
+       "sensors[n].element: no force element named 'spring' in `forces` (its force elements: s)"},
+      {"  - {name: s, type: spring_damper, body1: b, point2: [0, 0, 3], stiffness: 10}\n"
+       "sensors:\n  - {name: n, type: force_output, element: s, component: force}\n",
+       "sensors[n].component: unknown"},
+  };
+  for (const auto& [forces, expected] : cases) {
+    SCOPED_TRACE(forces);
+    const std::string msg = input_error_of([&] { read_scene_text(head + forces, "bad.yaml"); });
+    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+  }
+}
+
+TEST(ForceElementScenes, ForceOutputSensorsReadTheTensionAndTheBushingForce) {
+  // A 2 kg mass hanging at rest (static analysis) from a spring (k = 1000 N/m) and, beside it, a
+  // 1 kg mass on a bushing (k_z = 500 N/m) under gravity 9.81: tension m g = 19.62 N, elongation
+  // m g / k; the bushing's generalized force on u_z is the weight it carries, −9.81 N (u_z = z_B − z_A
+  // of the ground's copy relative to body1's, positive when body1 sags).
+  const std::string scene =
+      "name: hang\ndimension: 3\ngravity: [0, 0, -9.81]\nsolver: {analysis: static, static: {steps: 2}}\n"
+      "bodies:\n  - {name: m, type: rigid_body, mass: 2, inertia: [1, 1, 1], position: [0, 0, -1]}\n"
+      "  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [3, 0, 0]}\n"
+      "joints:\n  - {name: guide, type: prismatic, body1: m, axis: [0, 0, 1]}\n"
+      "forces:\n  - {name: s, type: spring_damper, body1: m, point2: [0, 0, 0], stiffness: 1000, rest_length: 1}\n"
+      "  - {name: mount, type: bushing, body1: b, stiffness: [1e4, 1e4, 500, 100, 100, 100]}\n"
+      "sensors:\n  - {name: N, type: force_output, element: s, component: tension}\n"
+      "  - {name: e, type: force_output, element: s, component: elongation}\n"
+      "  - {name: fz, type: force_output, element: mount, component: 'force[2]'}\n"
+      "  - {name: uz, type: force_output, element: mount, component: 'deflection[2]'}\n";
+  Scene s = read_scene_text(scene, "hang.yaml");
+  RunOptions opt;
+  opt.write_results = false;
+  opt.verbose = false;
+  const RunSummary r = run_simulation(s, opt, PETSC_COMM_WORLD);
+  EXPECT_NEAR(final_value(r, "N"), 2 * 9.81, 1e-10);
+  EXPECT_NEAR(final_value(r, "e"), 2 * 9.81 / 1000, 1e-13);
+  EXPECT_NEAR(final_value(r, "uz"), 9.81 / 500, 1e-13);
+  EXPECT_NEAR(final_value(r, "fz"), 9.81, 1e-10);
+}
