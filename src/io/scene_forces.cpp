@@ -5,7 +5,10 @@
 #include <memory>
 
 #include "alphaflex/core/rotation.hpp"
+#include "alphaflex/elements/joint_coordinate_force.hpp"
 #include "alphaflex/elements/spatial_force_elements.hpp"
+#include "alphaflex/joints/joint_coordinate.hpp"
+#include "alphaflex/joints/spatial_joints.hpp"
 #include "alphaflex/model/model.hpp"
 #include "scene_reader.hpp"
 
@@ -185,10 +188,132 @@ void read_bushing(const Item& it) {
                                                  read_matrix6(it, "damping", "N·s/m, N·m·s/rad")));
 }
 
+// ---- Joint coordinates: springs, dampers, motors and sensors on a joint's angle or displacement ----
+
+using Coordinate = JointCoordinateLink::Coordinate;
+
+/// The coordinate of the joint named by `joint` that the item acts on or reads: the `coordinate`
+/// key (rotation, translation) or the joint's only one; `wanted` (if given) is what the type needs.
+Coordinate joint_coordinate_kind(const Item& it, const SpatialJoint& joint, const char* wanted) {
+  const SpatialJointKind& kind = joint.kind();
+  std::string has;
+  if (kind.angle_driver) has = "a rotation about its axis";
+  if (kind.displacement_driver) has += std::string(has.empty() ? "" : " and ") + "a translation along its axis";
+  if (has.empty())
+    it.rd.fail(it.keys.node("joint"), it.at("joint"),
+               "'" + joint.name() + "' is a " + kind.name + " joint, which has no single rotation or translation coordinate (joint springs, dampers, motors and joint sensors act on revolute, cylindrical and prismatic joints)");
+  const bool both = kind.angle_driver && kind.displacement_driver;
+  Coordinate c = kind.angle_driver ? Coordinate::rotation : Coordinate::translation;
+  if (it.keys.has("coordinate")) {
+    const std::string w = it.keys.text("coordinate");
+    if (w != "rotation" && w != "translation")
+      it.rd.fail(it.keys.node("coordinate"), it.at("coordinate"), "unknown coordinate '" + w + "' (expected rotation or translation)");
+    c = w == "rotation" ? Coordinate::rotation : Coordinate::translation;
+    if ((c == Coordinate::rotation && !kind.angle_driver) || (c == Coordinate::translation && !kind.displacement_driver))
+      it.rd.fail(it.keys.node("coordinate"), it.at("coordinate"), "a " + kind.name + " joint has " + has + " only");
+  } else if (wanted) {
+    c = std::string(wanted) == "rotation" ? Coordinate::rotation : Coordinate::translation;
+    if ((c == Coordinate::rotation && !kind.angle_driver) || (c == Coordinate::translation && !kind.displacement_driver))
+      it.rd.fail(it.keys.node("joint"), it.at("joint"), "'" + joint.name() + "' is a " + kind.name + " joint, which has " + has + " only");
+  } else if (both) {
+    it.rd.fail(it.node, it.at("coordinate"), "missing (required for a " + kind.name + " joint): rotation or translation");
+  }
+  return c;
+}
+
+/// The scalar node ψ of a joint's coordinate (joints/joint_coordinate.hpp) and its kind; the node is
+/// made on first use with its link to the joint, named JOINT.angle or JOINT.displacement.
+struct JointCoordinateNode {
+  int node;
+  Coordinate coordinate;
+  const char* variable() const { return coordinate == Coordinate::rotation ? "angle" : "displacement"; }
+};
+JointCoordinateNode joint_coordinate_node(const Item& it, const char* wanted = nullptr) {
+  const int ci = sensor_joint(it);
+  const auto* joint = dynamic_cast<const SpatialJoint*>(it.model.constraints()[static_cast<size_t>(ci)].get());
+  if (!joint) it.rd.fail(it.keys.node("joint"), it.at("joint"), "'" + it.keys.text("joint") + "' is not a joint of `joints`");
+  const Coordinate c = joint_coordinate_kind(it, *joint, wanted);
+  const std::string name = joint->name() + (c == Coordinate::rotation ? ".angle" : ".displacement");
+  if (const int id = it.model.find_node(name); id >= 0) return {id, c};
+  Node nd;
+  nd.name = name;
+  nd.kind = NodeKind::LineParticle2D;
+  nd.ndof = nd.nconf = 1;
+  nd.line_direction = Eigen::Vector2d::Zero();  // drawn as a fixed point: it is a coordinate, not a place
+  // ψ and ψ̇ at t = 0 from the frames (Φ = 0, Φ_q v = 0), so that the start is consistent.
+  std::vector<int> nodes = joint->nodes();
+  Eigen::VectorXd q(7 * nodes.size() + 1), v(6 * nodes.size() + 1);
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    q.segment<7>(7 * static_cast<Eigen::Index>(k)) = it.model.node(nodes[k]).q0;
+    v.segment<6>(6 * static_cast<Eigen::Index>(k)) = it.model.node(nodes[k]).v0;
+  }
+  std::vector<int> with_psi = nodes;
+  with_psi.push_back(-1);  // the node is not made yet: only the count matters to the probe
+  const JointCoordinateLink probe(name, with_psi, joint->marker_a(), joint->marker_b(), c);
+  q[q.size() - 1] = probe.frame_value(q.head(q.size() - 1));
+  v[v.size() - 1] = 0.0;
+  Eigen::VectorXd phi;
+  Eigen::MatrixXd phi_q;
+  probe.evaluate(q, 0.0, phi, phi_q);
+  nd.q0 = Eigen::VectorXd::Constant(1, q[q.size() - 1]);
+  nd.v0 = Eigen::VectorXd::Constant(1, -phi_q.row(0).dot(v) / phi_q(0, phi_q.cols() - 1));
+  const int id = it.model.add_node(nd);
+  nodes.push_back(id);
+  it.model.add_constraint(std::make_unique<JointCoordinateLink>(name, nodes, joint->marker_a(), joint->marker_b(), c));
+  return {id, c};
+}
+
+void read_joint_spring_damper(const Item& it) {
+  const Section& k = it.keys;
+  const JointCoordinateNode psi = joint_coordinate_node(it);
+  const int laws = int(k.has("stiffness")) + int(k.has("force")) + int(k.has("damping") && !k.has("stiffness"));
+  if (laws != 1)
+    it.rd.fail(it.node, it.path, laws == 0 ? "give the law: stiffness and/or damping (linear), or force (an expression)"
+                                           : "give one law: stiffness/damping or force, not both");
+  const double rest = k.number("rest", 0.0);
+  ScalarForceLaw law;
+  if (k.has("force")) {
+    try {
+      law = ScalarForceLaw::expression(
+          std::make_shared<ExpressionFunction>(k.text("force"), it.rd.scope(),
+                                               std::vector<std::string>{psi.variable(), "speed", "t"}),
+          rest);
+    } catch (const std::invalid_argument& e) {
+      it.rd.fail(k.node("force"), it.at("force"), e.what());
+    }
+  } else {
+    law = ScalarForceLaw::linear(k.number("stiffness", 0.0), k.number("damping", 0.0), rest, k.number("preload", 0.0));
+  }
+  it.model.add_element(std::make_unique<JointCoordinateForce>(it.name, psi.node, law, JointCoordinateForce::Role::spring_damper));
+}
+
+void read_joint_motor(const Item& it) {
+  const JointCoordinateNode psi = joint_coordinate_node(it);
+  // `torque` drives a rotation, `force` a translation.
+  const char* key = psi.coordinate == Coordinate::rotation ? "torque" : "force";
+  const char* other = psi.coordinate == Coordinate::rotation ? "force" : "torque";
+  if (it.keys.has(other))
+    it.rd.fail(it.keys.node(other), it.at(other), std::string("this motor drives a ") +
+                                                      (psi.coordinate == Coordinate::rotation ? "rotation: give `torque`" : "translation: give `force`"));
+  if (!it.keys.has(key)) it.rd.fail(it.node, it.at(key), "missing (required): the motor's " + std::string(key) + " (an expression)");
+  try {
+    auto f = std::make_shared<ExpressionFunction>(it.keys.text(key), it.rd.scope(), std::vector<std::string>{psi.variable(), "speed", "t"});
+    it.model.add_element(std::make_unique<JointCoordinateForce>(it.name, psi.node, ScalarForceLaw::expression(f, 0.0),
+                                                                JointCoordinateForce::Role::motor));
+  } catch (const std::invalid_argument& e) {
+    it.rd.fail(it.keys.node(key), it.at(key), e.what());
+  }
+}
+
+void read_joint_sensor(const Item& it, Sensor& sn, const char* wanted, bool speed) {
+  sn.node = joint_coordinate_node(it, wanted).node;
+  sn.kind = speed ? Sensor::Kind::NodeSpeed : Sensor::Kind::NodeCoordinate;
+}
+
 /// The force elements a `force_output` sensor can read (their element names are the scene's).
 bool is_force_element(const Element& e) {
   const std::string type = e.type();
-  return type == "spring_damper" || type == "bushing";
+  return type == "spring_damper" || type == "bushing" || type == "joint_spring_damper" || type == "joint_motor";
 }
 
 void read_force_output(const Item& it, Sensor& sn) {
@@ -240,10 +365,38 @@ void add_spatial_force_types(SceneTypes& t) {
   t.loads.add("bushing", type_schema("forces.3d.bushing",
       "`bushing`: 6×6 stiffness and damping between two frames that coincide at t = 0 (a rubber mount, a compliant joint)", bushing),
       read_bushing);
+  const Key joint{"joint", KeyType::Text, "–", kRequired, "a revolute, cylindrical or prismatic joint of `joints`"};
+  const Key coordinate{"coordinate", KeyType::Text, "–", "the joint's only one", "`rotation` or `translation` (required on a cylindrical joint)"};
+  t.loads.add("joint_spring_damper", type_schema("forces.3d.joint_spring_damper",
+      "`joint_spring_damper` on a joint's unwrapped angle (rotational) or displacement (translational)", {
+      joint, coordinate,
+      {"stiffness", KeyType::Number, "N·m/rad or N/m", "0", "k: torque or force −k (ψ − rest) − c ψ̇ − preload on the coordinate ψ", Range::non_negative()},
+      {"damping", KeyType::Number, "N·m·s/rad or N·s/m", "0", "c", Range::non_negative()},
+      {"rest", KeyType::Number, "rad or m", "0", "ψ at which the spring is unloaded (the joint's coordinate is 0 at t = 0)"},
+      {"preload", KeyType::Number, "N·m or N", "0", "the spring's resisting torque or force at ψ = rest"},
+      {"force", KeyType::Text, "N·m or N", "–", "instead of stiffness/damping: the resisting torque or force as an expression of `angle` (rad) or `displacement` (m) minus rest, `speed` and `t`"}}),
+      read_joint_spring_damper);
+  t.loads.add("joint_motor", type_schema("forces.3d.joint_motor",
+      "`joint_motor`: a torque or force driving a joint's coordinate, a function of time, coordinate and speed", {
+      joint, coordinate,
+      {"torque", KeyType::Text, "N·m", "– (rotation: required)",
+       "torque in the sense of the angle: an expression of `t` (s), `angle` (rad), `speed` (rad/s) and `parameters`, e.g. `T_stall*(1 - speed/w0)`"},
+      {"force", KeyType::Text, "N", "– (translation: required)", "force in the sense of the displacement: an expression of `t`, `displacement` (m), `speed` (m/s)"}}),
+      read_joint_motor);
+  const std::tuple<const char*, const char*, bool, const char*> joint_sensors[] = {
+      {"joint_angle", "rotation", false, "`joint_angle`: relative angle of a revolute or cylindrical joint, unwrapped over any number of turns (rad)"},
+      {"joint_displacement", "translation", false, "`joint_displacement`: relative displacement of a prismatic or cylindrical joint along its axis (m)"},
+      {"joint_speed", nullptr, true, "`joint_speed`: rate of a joint's angle (rad/s) or displacement (m/s)"}};
+  for (const auto& [name, wanted, speed, doc] : joint_sensors) {
+    std::vector<Key> keys{joint};
+    if (!wanted) keys.push_back(coordinate);
+    t.sensors.add(name, type_schema(std::string("sensors.3d.") + name, doc, keys),
+                  [wanted = wanted, speed = speed](const Item& it, Sensor& sn) { read_joint_sensor(it, sn, wanted, speed); });
+  }
   t.sensors.add("force_output", type_schema("sensors.3d.force_output", "`force_output`: a result of a force element of `forces`", {
-      {"element", KeyType::Text, "–", kRequired, "the name of a `spring_damper` or `bushing`"},
+      {"element", KeyType::Text, "–", kRequired, "the name of a `spring_damper`, `bushing`, `joint_spring_damper` or `joint_motor`"},
       {"component", KeyType::Text, "–", kRequired,
-       "spring_damper: `length` (m), `elongation` (m), `rate` (m/s), `tension` (N); bushing: `deflection[0..5]` (u in m, γ in rad), `force[0..5]` (K ε + C ε̇: N, N·m)"}}),
+       "spring_damper: `length` (m), `elongation` (m), `rate` (m/s), `tension` (N); bushing: `deflection[0..5]` (u in m, γ in rad), `force[0..5]` (K ε + C ε̇: N, N·m); joint_spring_damper, joint_motor: `coordinate`, `speed`, `force` or `drive` (N·m or N on the coordinate)"}}),
       read_force_output);
 }
 

@@ -70,6 +70,8 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
       const Eigen::Vector3d v = r.frame.transpose() * (component < 3 ? r.force : r.moment);
       return v[component % 3];
     }
+    case Kind::NodeCoordinate: return s.q[model.node(node).first_conf];
+    case Kind::NodeSpeed: return s.v[model.node(node).first_dof];
     case Kind::ElementOutput: {
       const Element& e = *model.elements()[static_cast<size_t>(element)];
       Eigen::VectorXd values;

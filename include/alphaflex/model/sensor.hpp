@@ -11,7 +11,9 @@ class Model;
 
 struct Sensor {
   enum class Kind { BodyAngle, RelativeAngle, PointPosition, PointDisplacement, PointVelocity,
-                    PointAcceleration, JointReaction, BodyRotation, ElementOutput };
+                    PointAcceleration, JointReaction, BodyRotation, ElementOutput,
+                    NodeCoordinate,  ///< q of a one-coordinate node (a joint coordinate, joints/joint_coordinate.hpp)
+                    NodeSpeed };     ///< q̇ of the same
   std::string name;
   Kind kind = Kind::BodyAngle;
   int node = -1, node2 = -1;          ///< bodies (angle sensors); node of the marker
