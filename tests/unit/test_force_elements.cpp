@@ -564,9 +564,9 @@ TEST(JointSpringDamper, ASpringOnAJointWithoutSuchACoordinateIsRefusedByName) {
 }
 
 TEST(JointMotor, PdControlledArmSettlesAlongTheClosedFormLinearResponse) {
-  // An arm (J = 0.04 kg m² about its revolute axis, no gravity) driven by a PD motor
+  // An arm (J = 0.13 kg m² about its revolute axis, no gravity) driven by a PD motor
   // T = −Kp (θ − θ_set) − Kd θ̇ with Kp = 4 N m/rad, Kd = 0.4 N m s/rad: J θ̈ + Kd θ̇ + Kp θ = Kp θ_set,
-  // ω_n = √(Kp/J) = 10 rad/s, ζ = Kd / (2 √(Kp J)) = 0.5, and from rest at θ = 0
+  // ω_n = √(Kp/J) = 5.5 rad/s, ζ = Kd / (2 √(Kp J)) = 0.28, and from rest at θ = 0
   // θ(t) = θ_set [1 − e^(−ζω_n t) (cos ω_d t + ζ/√(1 − ζ²) sin ω_d t)], ω_d = ω_n √(1 − ζ²).
   // The motor's tangent includes ∂T/∂θ = −Kp and ∂T/∂θ̇ = −Kd (exact), so Newton converges as without
   // the controller: at most 3 iterations per step (measured 2.8 on average; the same arm turning
