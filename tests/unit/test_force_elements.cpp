@@ -76,6 +76,21 @@ std::vector<std::pair<std::string, ScalarForceLaw>> spring_laws() {
           {"table and damping", ScalarForceLaw::table(make_table({-2.0, 0.0, 0.5, 3.0}, {-900.0, 0.0, 100.0, 1500.0}), 4.0, 0.7)}};
 }
 
+/// The start of the bad scenes: one body b at (0, 0, 1).
+constexpr const char* kBadSceneHead =
+    "name: bad\ndimension: 3\nsolver: {h: 0.01, t_end: 0.02}\n"
+    "bodies:\n  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [0, 0, 1]}\n";
+
+/// Each (tail, expected) of `cases`: the scene head + tail is refused with a message containing
+/// `expected` (an InputError, the file named bad.yaml).
+void expect_input_errors(const std::string& head, const std::vector<std::pair<std::string, std::string>>& cases) {
+  for (const auto& [tail, expected] : cases) {
+    SCOPED_TRACE(tail);
+    const std::string msg = input_error_of([&, &tail = tail] { read_scene_text(head + tail, "bad.yaml"); });
+    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+  }
+}
+
 }  // namespace
 
 TEST(ExpressionFunction, GradientMatchesCentralDifferencesAndUnknownNamesListTheVariables) {
@@ -295,10 +310,7 @@ TEST(SpatialSpringDamper, DampedSpringMassIn3DHasTheClosedFormFrequencyAndLogari
 }
 
 TEST(ForceElementScenes, BadInputIsRefusedNamingTheKey) {
-  const std::string head =
-      "name: bad\ndimension: 3\nsolver: {h: 0.01, t_end: 0.02}\n"
-      "bodies:\n  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [0, 0, 1]}\n"
-      "forces:\n";
+  const std::string head = std::string(kBadSceneHead) + "forces:\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"  - {name: mount, type: bushing, body1: b, stiffness: [[1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0], "
        "[0, 0, 0, 1, 2, 0], [0, 0, 0, 2, 1, 0], [0, 0, 0, 0, 0, 1]]}\n",
@@ -329,11 +341,7 @@ TEST(ForceElementScenes, BadInputIsRefusedNamingTheKey) {
        "sensors:\n  - {name: n, type: force_output, element: s, component: force}\n",
        "sensors[n].component: unknown"},
   };
-  for (const auto& [forces, expected] : cases) {
-    SCOPED_TRACE(forces);
-    const std::string msg = input_error_of([&] { read_scene_text(head + forces, "bad.yaml"); });
-    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
-  }
+  expect_input_errors(head, cases);
 }
 
 TEST(ForceElementScenes, ForceOutputSensorsReadTheTensionAndTheBushingForce) {
@@ -535,9 +543,7 @@ TEST(JointMotor, DcMotorSpinsUpAFlywheelAlongTheClosedFormSpeedOverManyTurns) {
 }
 
 TEST(JointSpringDamper, ASpringOnAJointWithoutSuchACoordinateIsRefusedByName) {
-  const std::string head =
-      "name: bad\ndimension: 3\nsolver: {h: 0.01, t_end: 0.02}\n"
-      "bodies:\n  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [0, 0, 1]}\n"
+  const std::string head = std::string(kBadSceneHead) +
       "joints:\n  - {name: ball, type: spherical, body1: b, location: [0, 0, 0]}\n"
       "  - {name: cyl, type: cylindrical, body1: b, body2: ground, location: [0, 0, 1], axis: [0, 0, 1]}\n"
       "  - {name: slide, type: prismatic, body1: b, body2: ground, location: [0, 0, 1], axis: [1, 0, 0]}\n";
@@ -556,11 +562,7 @@ TEST(JointSpringDamper, ASpringOnAJointWithoutSuchACoordinateIsRefusedByName) {
       {"sensors:\n  - {name: a, type: joint_angle, joint: slide}\n",
        "sensors[a].joint: 'slide' is a prismatic joint, which has a translation along its axis only"},
   };
-  for (const auto& [tail, expected] : cases) {
-    SCOPED_TRACE(tail);
-    const std::string msg = input_error_of([&] { read_scene_text(head + tail, "bad.yaml"); });
-    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
-  }
+  expect_input_errors(head, cases);
 }
 
 TEST(JointMotor, PdControlledArmSettlesAlongTheClosedFormLinearResponse) {
