@@ -332,6 +332,23 @@ void read_force_output(const Item& it, Sensor& sn) {
   sn.component = it.rd.choice(it.keys.node("component"), it.at("component"), elements[static_cast<size_t>(sn.element)]->output_names());
 }
 
+void read_energy(const Item& it, Sensor& sn) {
+  const std::string name = it.keys.text("element");
+  const auto& elements = it.model.elements();
+  for (size_t e = 0; e < elements.size(); ++e)
+    if (elements[e]->name() == name) sn.element = static_cast<int>(e);
+  if (sn.element < 0)
+    it.rd.fail(it.keys.node("element"), it.at("element"), "no element named '" + name +
+                                                            "' (a rigid body's name, a force element's, or BLOCK[k] for element k of a beam or shell block)");
+  sn.kind = Sensor::Kind::ElementEnergy;
+  sn.component = it.keys.choice("kind");
+}
+
+void read_constraint_violation(const Item& it, Sensor& sn) {
+  sn.kind = Sensor::Kind::JointViolation;
+  sn.constraint = sensor_joint(it);
+}
+
 }  // namespace
 
 void add_spatial_force_types(SceneTypes& t) {
@@ -393,6 +410,14 @@ void add_spatial_force_types(SceneTypes& t) {
     t.sensors.add(name, type_schema(std::string("sensors.3d.") + name, doc, keys),
                   [wanted = wanted, speed = speed](const Item& it, Sensor& sn) { read_joint_sensor(it, sn, wanted, speed); });
   }
+  t.sensors.add("energy", type_schema("sensors.3d.energy", "`energy` of one element: kinetic ½ q̇ᵀ M q̇ or strain (J)", {
+      {"element", KeyType::Text, "–", kRequired, "a rigid body, a force element, or BLOCK[k] (element k of a beam or shell block)"},
+      {"kind", KeyType::Choice, "–", kRequired, "kinetic: with the element's mass matrix; strain: the stored elastic energy (linear springs, bushings, beams, shells)",
+       {}, "", "", {"kinetic", "strain"}}}), read_energy);
+  t.sensors.add("constraint_violation", type_schema("sensors.3d.constraint_violation",
+      "`constraint_violation`: |Φ| of a joint's equations (m, and 1 for the products of axes)", {
+      {"joint", KeyType::Text, "–", kRequired, "a joint of `joints` (or JOINT.angle, JOINT.displacement: a joint coordinate's link)"}}),
+      read_constraint_violation);
   t.sensors.add("force_output", type_schema("sensors.3d.force_output", "`force_output`: a result of a force element of `forces`", {
       {"element", KeyType::Text, "–", kRequired, "the name of a `spring_damper`, `bushing`, `joint_spring_damper` or `joint_motor`"},
       {"component", KeyType::Text, "–", kRequired,
