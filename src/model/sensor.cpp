@@ -70,6 +70,25 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
       const Eigen::Vector3d v = r.frame.transpose() * (component < 3 ? r.force : r.moment);
       return v[component % 3];
     }
+    case Kind::NodeCoordinate: return s.q[model.node(node).first_conf];
+    case Kind::NodeSpeed: return s.v[model.node(node).first_dof];
+    case Kind::ElementEnergy: {
+      const Element& e = *model.elements()[static_cast<size_t>(element)];
+      const LocalState ls = model.local_state(e, s);
+      if (component == 1) return e.elastic_energy(ls.q);
+      // ½ q̇ᵀ M q̇ with the element's own mass matrix M = ∂r/∂q̈ (rigid bodies: ½ m ẋ² + ½ Ωᵀ J Ω).
+      LocalResidual out;
+      out.reset(static_cast<int>(ls.v.size()), true);
+      e.evaluate(ls, out, true);
+      return 0.5 * ls.v.dot(out.M * ls.v);
+    }
+    case Kind::JointViolation: {
+      const Constraint& c = *model.constraints()[static_cast<size_t>(constraint)];
+      Eigen::VectorXd phi;
+      Eigen::MatrixXd phi_q;
+      c.evaluate(gather(s.q, model.confs_of(c.nodes())), s.t, phi, phi_q);
+      return phi.norm();
+    }
     case Kind::ElementOutput: {
       const Element& e = *model.elements()[static_cast<size_t>(element)];
       Eigen::VectorXd values;

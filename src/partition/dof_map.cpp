@@ -60,8 +60,9 @@ DofMap::DofMap(const Model& model, MPI_Comm comm) {
   for (const auto& e : model.elements()) element_owner_.push_back(first_node_owner(e->nodes()));
   for (const auto& c : model.constraints()) constraint_owner_.push_back(first_node_owner(c->nodes()));
   for (const Sensor& s : model.sensors()) {
-    if (s.kind == Sensor::Kind::JointReaction) sensor_owner_.push_back(constraint_owner_[static_cast<size_t>(s.constraint)]);
-    else if (s.kind == Sensor::Kind::ElementOutput) sensor_owner_.push_back(element_owner_[static_cast<size_t>(s.element)]);
+    // A sensor that reads a joint or an element is evaluated where it is assembled.
+    if (s.constraint >= 0) sensor_owner_.push_back(constraint_owner_[static_cast<size_t>(s.constraint)]);
+    else if (s.element >= 0) sensor_owner_.push_back(element_owner_[static_cast<size_t>(s.element)]);
     else sensor_owner_.push_back(node_part_[static_cast<size_t>(s.node)]);
   }
 

@@ -30,20 +30,8 @@
 
 namespace alphaflex {
 
-/// A frame fixed to node `slot` of a joint (0 or 1 in the joint's node list; −1: the ground),
-/// given by its position and rotation in the node's frame (world frame for the ground).
-struct SpatialMarker {
-  int slot = -1;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-
-  template <class S>
-  Pose<S> pose(const Pose<S>* frames) const {
-    if (slot < 0) return cast_pose<S>(Pose<double>{position, rotation});
-    const Pose<S>& f = frames[slot];
-    return Pose<S>{f.x + f.R * position.template cast<S>(), f.R * rotation.template cast<S>()};
-  }
-};
+// SpatialMarker (a frame fixed to a joint's node or the ground) is in model/spatial_kernel.hpp,
+// shared with the spatial force elements.
 
 /// The vectors joint equations are written in: the axes of marker A (node 1) and of marker B
 /// (node 2 or the ground), d = p_B − p_A, and the fixed world axes.

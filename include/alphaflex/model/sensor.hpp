@@ -11,7 +11,11 @@ class Model;
 
 struct Sensor {
   enum class Kind { BodyAngle, RelativeAngle, PointPosition, PointDisplacement, PointVelocity,
-                    PointAcceleration, JointReaction, BodyRotation, ElementOutput };
+                    PointAcceleration, JointReaction, BodyRotation, ElementOutput,
+                    NodeCoordinate,  ///< q of a one-coordinate node (a joint coordinate, joints/joint_coordinate.hpp)
+                    NodeSpeed,       ///< q̇ of the same
+                    ElementEnergy,   ///< of one element: component 0 kinetic ½ q̇ᵀ M q̇, 1 strain (J)
+                    JointViolation };  ///< |Φ| of one joint (its equations' units: m, or 1 for axis products)
   std::string name;
   Kind kind = Kind::BodyAngle;
   int node = -1, node2 = -1;          ///< bodies (angle sensors); node of the marker
@@ -19,8 +23,8 @@ struct Sensor {
   /// Points: 0, 1, 2 = x, y, z. Joints: fx, fy, fz, mx, my, mz = 0…5 in the joint frame.
   /// Body rotation: rotation-vector component. Element outputs: index into output_names().
   int component = 0;
-  int constraint = -1;                ///< joint index (JointReaction)
-  int element = -1;                   ///< element index (ElementOutput)
+  int constraint = -1;                ///< joint index (JointReaction, JointViolation)
+  int element = -1;                   ///< element index (ElementOutput, ElementEnergy)
   /// Spatial points: components in the frame of this node, relative to its origin (−1: world).
   int frame_node = -1;
   Eigen::Vector3d initial = Eigen::Vector3d::Zero();  ///< initial point position (PointDisplacement)

@@ -103,6 +103,21 @@ Pose<S> perturbed(const Pose<S>& p, const Vec3<S>& dx, const Vec3<S>& dth) {
   return Pose<S>{p.x + dx, p.R * exp_so3<S>(dth)};
 }
 
+/// A frame fixed to node `slot` of a joint or force element (0 or 1 in its node list; −1: the
+/// ground), given by its position and rotation in the node's frame (world frame for the ground).
+struct SpatialMarker {
+  int slot = -1;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+
+  template <class S>
+  Pose<S> pose(const Pose<S>* frames) const {
+    if (slot < 0) return cast_pose<S>(Pose<double>{position, rotation});
+    const Pose<S>& f = frames[slot];
+    return Pose<S>{f.x + f.R * position.template cast<S>(), f.R * rotation.template cast<S>()};
+  }
+};
+
 /// f(t) for a plain or differentiated time, exact to second order: f + f' dt + f'' dt²/2 about the
 /// plain value of t (so the derivatives carried by t get f' and f'').
 template <class S>

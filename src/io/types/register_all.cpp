@@ -36,6 +36,7 @@
   X(register_element_output_3d)    \
   X(register_beams_3d)             \
   X(register_shells_3d)            \
+  X(register_force_elements_3d)    \
   /* end of the spatial types */
 
 namespace alphaflex::scene_detail {

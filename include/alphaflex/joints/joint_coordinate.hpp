@@ -1,0 +1,65 @@
+#pragma once
+// The coordinate of a spatial joint as an unknown of the model: the relative angle of a revolute
+// (or cylindrical) joint, unwrapped over any number of turns, or the relative displacement of a
+// prismatic (or cylindrical) joint. Joint springs, dampers and motors act on it
+// (elements/joint_coordinate_force.hpp) and the joint sensors read it.
+//
+// Why an unknown rather than an angle computed from the frames: the frames give the angle only
+// modulo 2π (modulo 4π from the quaternions), so unwrapping it would need a turn count kept from
+// step to step — state outside q that checkpoints, step cuts, restarts and every rank would have to
+// carry. A scalar node ψ (NodeKind::LineParticle2D, massless) tied to the joint by one equation
+// carries the unwrapped value in q itself, so all of that holds by construction (the integrator
+// restores q on a step cut, the checkpoint stores q, the ghost copies follow q). Cost: one unknown
+// and one multiplier per joint that has a spring, motor or sensor. The multiplier is then the
+// generalized force on the coordinate (the torque or force the spring or motor passes to the
+// bodies).
+//
+// Equations, with the joint's markers A (node 1) and B (node 2 or the ground), as the drivers of
+// joints/spatial_joints.hpp define the joint's angle and displacement:
+//   rotation:     a1·(cos ψ b2 − sin ψ b1) = sin(ϕ − ψ) = 0,  ϕ the angle of A relative to B about b3;
+//   translation:  (p_A − p_B)·b3 − ψ = 0.
+// Φ_q, the geometric stiffness and the acceleration term are exact (forward AD on the group, as
+// model/spatial_kernel.hpp, with ψ as a 13th (or 7th) variable on a vector space).
+#include "alphaflex/model/constraint.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
+
+namespace alphaflex {
+
+class JointCoordinateLink final : public Constraint {
+ public:
+  enum class Coordinate { rotation, translation };
+  /// `nodes`: the joint's one or two spatial nodes, then the coordinate's scalar node; the markers'
+  /// slots refer to the spatial nodes.
+  JointCoordinateLink(std::string name, std::vector<int> nodes, SpatialMarker a, SpatialMarker b, Coordinate c);
+  const char* type() const override { return "joint_coordinate"; }
+  std::unique_ptr<Constraint> clone() const override { return std::make_unique<JointCoordinateLink>(*this); }
+  int size() const override { return 1; }
+  std::string equation_name(int) const override { return coordinate_ == Coordinate::rotation ? "sin(angle − ψ)" : "displacement − ψ"; }
+  void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
+  void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
+                           Eigen::MatrixXd& k) const override;
+  void acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t, Eigen::VectorXd& c) const override;
+  /// The load on node 1 (world), about p_A, in the frame of marker A.
+  JointReaction reaction(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda) const override;
+
+  /// The joint's coordinate from the frames alone (the angle in (−π, π]), at a stored configuration
+  /// of the spatial nodes (7 numbers each): the initial value of ψ.
+  double frame_value(const Eigen::VectorXd& q_frames) const;
+
+  template <class S>
+  S equation(const Pose<S>* frames, const S& psi) const {
+    using std::cos;
+    using std::sin;
+    const Pose<S> A = a_.pose(frames), B = b_.pose(frames);
+    if (coordinate_ == Coordinate::rotation)
+      return A.R.col(0).dot(Vec3<S>(cos(psi) * B.R.col(1) - sin(psi) * B.R.col(0)));
+    return (A.x - B.x).dot(B.R.col(2)) - psi;
+  }
+
+ private:
+  int frames() const { return static_cast<int>(nodes().size()) - 1; }
+  SpatialMarker a_, b_;
+  Coordinate coordinate_;
+};
+
+}  // namespace alphaflex
