@@ -41,12 +41,41 @@ std::vector<double> sensor_values(const Subdomain& sub, const MechanicalState& s
 
 RunSummary run_body(RunObjects& objects, Scene& scene, const RunOptions& opt, MPI_Comm comm);
 
+/// A failed write of the results or of a checkpoint (issue 24, defect 1: a full disk), on every
+/// rank: the results are left as last committed — consistent in the CSV, NAME.h5 and the index —
+/// and a checkpoint of that state is written if there is room (the failed part's space is given
+/// back first). Throws the OutputError the user sees: the failed write (file, errno) and what was kept.
+[[noreturn]] void keep_committed_results(RunObjects& o, const OutputError& e) {
+  o.writer->abandon();
+  const CommittedState& c = o.committed;
+  std::ostringstream os;
+  os << e.what() << "\n  The results up to t = " << c.state.t << " s (output steps: " << c.position.results.steps
+     << ", sensor rows: " << c.position.results.csv_rows << ") are complete and consistent in " << o.writer->csv_path();
+  if (c.position.results.parts > 0) os << ", " << o.writer->h5_path() << " and " << o.writer->xdmf_path();
+  try {
+    write_checkpoint(*o.sub, c.checkpoint, c.state, c.auxiliary, c.position, c.parameters, c.h, c.keep);
+    os << "; a checkpoint of that state: " << c.checkpoint << ".\n  Once there is room, go on with: alphaflex run "
+       << c.scene_file << " --restart " << c.checkpoint << " -o " << std::filesystem::absolute(c.outdir).string()
+       << " (and the same --set options)";
+  } catch (const OutputError& again) {
+    os << "; no checkpoint of it could be written (" << again.what() << ")";
+  }
+  throw OutputError(os.str());
+}
+
 }  // namespace
 
 RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
-  return run_with_objects(opt.exit_comm, opt.exit_timeout,
-                          [&](RunObjects& objects) { return run_body(objects, scene, opt, comm); });
+  return run_with_objects(opt.exit_comm, opt.exit_timeout, [&](RunObjects& objects) {
+    try {
+      return run_body(objects, scene, opt, comm);
+    } catch (const OutputError& e) {
+      if (!objects.writer || objects.committed.checkpoint.empty()) throw;
+      keep_committed_results(objects, e);
+    }
+  });
 }
+
 
 namespace {
 
@@ -294,10 +323,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   }
   const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
   double last_checkpoint = MPI_Wtime();
-  auto checkpoint = [&](long n) {
-    if (!writer) return;
-    const double t0 = MPI_Wtime();
-    writer->commit();
+  auto position_at = [&](long n, long written) {
     pos.step = n;
     pos.h = hc;
     pos.cuts_in_row = cuts_in_row;
@@ -306,8 +332,15 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     pos.newton_max = sum.newton_max;
     pos.step_cuts = sum.step_cuts;
     pos.h_min = sum.h_min;
-    pos.last_written = last_written;
+    pos.last_written = written;
     pos.results = writer->position();
+    return pos;
+  };
+  auto checkpoint = [&](long n) {
+    if (!writer) return;
+    const double t0 = MPI_Wtime();
+    writer->commit();
+    position_at(n, last_written);
     sum.checkpoint_bytes = write_checkpoint(sub, checkpoint_path, s, integrator.auxiliary(), pos, rs.parameters, h,
                                             rs.checkpoint_keep);
     sum.checkpoint = checkpoint_path;
@@ -361,6 +394,18 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   };
   if (!restarting) sum.h_min = h;
   long n = first - 1;
+  // A write that fails later (a full disk: run_simulation) leaves the results as last committed and
+  // a checkpoint of the state they end at: that state is kept at every commit (a copy of the local
+  // state, once per commit), starting with the one committed so far (t = 0, or the restart's).
+  auto keep_committed = [&] {
+    const bool fields = n % rs.output_every == 0 || rs.t_end - s.t <= 1e-12 * std::max(1.0, std::fabs(rs.t_end));
+    o.committed = {s, integrator.auxiliary(), position_at(n, fields ? n : last_written), checkpoint_path, rs.parameters,
+                   h, rs.checkpoint_keep, scene.file, opt.outdir};
+  };
+  if (writer) {
+    writer->on_commit(keep_committed);
+    keep_committed();
+  }
   if (rs.step_cuts == 0) {
     // Fixed steps (the paper's scheme exactly): stop at the first Newton failure.
     for (n = first; n <= nsteps; ++n) {

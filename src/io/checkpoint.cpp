@@ -54,20 +54,11 @@ std::string numbered(const std::string& path, int k) {
   return stem + "." + std::to_string(k) + ".h5";
 }
 
-}  // namespace
-
-long long write_checkpoint(const Subdomain& sub, const std::string& path, const MechanicalState& local,
+/// Everything of a checkpoint in the open file f; flushed, so that a full disk fails here (on
+/// every rank alike: OutputError) and not in H5Fclose.
+void write_checkpoint_data(io_detail::H5Calls& h5, const Subdomain& sub, hid_t f, const MechanicalState& local,
                            const Eigen::VectorXd& auxiliary, const RunPosition& p, const AlphaParameters& parameters,
-                           double h, int keep) {
-  const std::string tmp = path + ".tmp";
-  io_detail::H5Calls h5(tmp);
-  const hid_t fapl = io_detail::file_access(h5, sub.comm());
-  hid_t f = -1;
-  if (fapl >= 0) {
-    f = h5(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "create the checkpoint");
-    h5(H5Pclose(fapl), "close the file access list");
-  }
-  agree<OutputError>(sub, h5.error());
+                           double h) {
   const hid_t xfer = io_detail::transfer_list(h5, sub.comm());
   agree<OutputError>(sub, h5.error());
   using io_detail::write_attribute;
@@ -125,9 +116,45 @@ long long write_checkpoint(const Subdomain& sub, const std::string& path, const 
   h5.group.clear();
   h5(H5Gclose(mg), "close the group model");
   h5(H5Pclose(xfer), "close the transfer list");
+  h5(H5Fflush(f, H5F_SCOPE_LOCAL), "write the checkpoint");
+  agree<OutputError>(sub, h5.error());
+}
+
+}  // namespace
+
+long long write_checkpoint(const Subdomain& sub, const std::string& path, const MechanicalState& local,
+                           const Eigen::VectorXd& auxiliary, const RunPosition& p, const AlphaParameters& parameters,
+                           double h, int keep) {
+  const std::string tmp = path + ".tmp";
+  io_detail::H5Calls h5(tmp);
+  // Room for the state and the fingerprint (8 bytes a value) and HDF5's metadata, asked before the
+  // collective writes (hdf5_rows.hpp, room_for); the last checkpoint stays if there is none.
+  const Model& model = sub.global_model();
+  const auto values = static_cast<unsigned long long>(model.num_conf() + 3 * model.num_dofs() + model.num_multipliers() +
+                                                      2 * model.nodes().size() + 2 * model.constraints().size() +
+                                                      model.elements().size());
+  agree<OutputError>(sub, io_detail::room_for(tmp, -1, 8 * values + 65536, "create the checkpoint"));
+  const hid_t fapl = io_detail::file_access(h5, sub.comm());
+  hid_t f = -1;
+  if (fapl >= 0) {
+    f = h5(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), "create the checkpoint");
+    h5(H5Pclose(fapl), "close the file access list");
+  }
+  agree<OutputError>(sub, h5.error());
+  try {
+    write_checkpoint_data(h5, sub, f, local, auxiliary, p, parameters, h);
+  } catch (const OutputError&) {
+    // A full disk: the file goes without a second failure in HDF5 (hdf5_rows.hpp, discard_file),
+    // and its space with it; the previous checkpoint stays.
+    io_detail::discard_file(f, tmp);
+    std::error_code ec;
+    if (sub.rank() == 0) std::filesystem::remove(tmp, ec);
+    throw;
+  }
   h5(H5Fclose(f), "close the checkpoint");
   agree<OutputError>(sub, h5.error());
   // Rotate (rank 0): .K-1 goes, .k → .k+1, the last → .1, the new one → the name.
+  const bool root = sub.rank() == 0;
   long long bytes = 0;
   if (root) {
     namespace fs = std::filesystem;
