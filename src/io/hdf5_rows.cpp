@@ -103,14 +103,25 @@ std::pair<hid_t, hid_t> selections(H5Calls& h5, const Rows& rows, int cols, cons
 }
 
 void write_typed(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, hid_t file_type, hid_t mem_type,
-                 const void* data, hid_t xfer) {
+                 const void* data, hid_t xfer, bool checksum = false) {
   const std::string set = "the dataset " + (h5.group.empty() ? std::string() : h5.group + "/") + name;
   const auto [file_space, mem_space] = selections(h5, rows, cols, set);
-  if (file_space >= 0 && mem_space >= 0) {
-    const hid_t d = h5(H5Dcreate2(loc, name, file_type, file_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create " + set);
+  hid_t dcpl = H5P_DEFAULT;
+  if (checksum && rows.total > 0) {
+    // One chunk up to 2^20 rows (a filter works on chunks); Fletcher32 over each.
+    const hsize_t chunk[2] = {std::min<hsize_t>(rows.total, hsize_t{1} << 20), static_cast<hsize_t>(cols)};
+    dcpl = h5(H5Pcreate(H5P_DATASET_CREATE), "create the creation list of " + set);
+    if (dcpl >= 0) {
+      h5(H5Pset_chunk(dcpl, cols > 1 ? 2 : 1, chunk), "chunk " + set);
+      h5(H5Pset_fletcher32(dcpl), "add a checksum to " + set);
+    }
+  }
+  if (file_space >= 0 && mem_space >= 0 && dcpl >= 0) {
+    const hid_t d = h5(H5Dcreate2(loc, name, file_type, file_space, H5P_DEFAULT, dcpl, H5P_DEFAULT), "create " + set);
     if (d >= 0 && rows.total > 0) h5(H5Dwrite(d, mem_type, mem_space, file_space, xfer, data), "write " + set);
     if (d >= 0) h5(H5Dclose(d), "close " + set);
   }
+  if (dcpl >= 0 && dcpl != H5P_DEFAULT) h5(H5Pclose(dcpl), "close the creation list of " + set);
   if (mem_space >= 0) h5(H5Sclose(mem_space), "close the memory dataspace of " + set);
   if (file_space >= 0) h5(H5Sclose(file_space), "close the dataspace of " + set);
 }
@@ -133,16 +144,49 @@ bool read_typed(hid_t loc, const char* name, hid_t mem_type, std::vector<T>& out
   return H5Dclose(set) >= 0 && ok;
 }
 
-void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer) {
-  write_typed(h5, loc, name, rows, cols, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data, xfer);
+void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer,
+                bool checksum) {
+  write_typed(h5, loc, name, rows, cols, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data, xfer, checksum);
 }
 
 void write_int_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const int* data, hid_t xfer) {
   write_typed(h5, loc, name, rows, 1, H5T_STD_I32LE, H5T_NATIVE_INT, data, xfer);
 }
 
-void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer) {
-  write_typed(h5, loc, name, rows, 1, H5T_STD_I64LE, H5T_NATIVE_LLONG, data, xfer);
+void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer,
+                     bool checksum) {
+  write_typed(h5, loc, name, rows, 1, H5T_STD_I64LE, H5T_NATIVE_LLONG, data, xfer, checksum);
+}
+
+template <class T>
+std::string read_expected_typed(hid_t loc, const std::string& where, const char* name, size_t expected, hid_t mem_type,
+                                std::vector<T>& out) {
+  const std::string set = "the dataset " + where + "/" + name;
+  if (H5Lexists(loc, name, H5P_DEFAULT) <= 0) return set + " is missing";
+  const hid_t d = H5Dopen2(loc, name, H5P_DEFAULT);
+  if (d < 0) return set + " cannot be opened (corrupted)";
+  const hid_t space = H5Dget_space(d);
+  const hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
+  std::string err;
+  if (n < 0) err = set + " has no readable size (corrupted)";
+  else if (static_cast<size_t>(n) != expected)
+    err = set + " holds " + std::to_string(n) + " values where this model has " + std::to_string(expected);
+  if (err.empty()) {
+    out.resize(expected);
+    if (expected > 0 && H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      err = set + " cannot be read: its checksum does not match (the file changed after it was written)";
+  }
+  if (space >= 0) H5Sclose(space);
+  H5Dclose(d);
+  return err;
+}
+
+std::string read_expected(hid_t loc, const std::string& where, const char* name, size_t expected, std::vector<double>& out) {
+  return read_expected_typed(loc, where, name, expected, H5T_NATIVE_DOUBLE, out);
+}
+
+std::string read_expected(hid_t loc, const std::string& where, const char* name, size_t expected, std::vector<long long>& out) {
+  return read_expected_typed(loc, where, name, expected, H5T_NATIVE_LLONG, out);
 }
 
 bool read_all(hid_t loc, const char* name, std::vector<double>& out) { return read_typed(loc, name, H5T_NATIVE_DOUBLE, out); }

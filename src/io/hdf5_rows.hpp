@@ -71,14 +71,23 @@ struct StateRows {
 /// Creates dataset `name` of `rows.total` × `cols` values in `loc` and writes this rank's rows
 /// (`rows.mine` × `cols` values, in row order) with the transfer list `xfer`. Collective. A failed
 /// call is recorded in `h5` (the caller makes the ranks agree on it).
-void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer);
+/// With `checksum`, the dataset is chunked with HDF5's Fletcher32 filter: a read of it fails
+/// if a byte changed since it was written (checkpoints).
+void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer,
+                bool checksum = false);
 void write_int_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const int* data, hid_t xfer);
-void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer);
+void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer,
+                     bool checksum = false);
 
 /// The whole of a dataset as doubles / integers (every rank reads all of it); false if missing or
 /// unreadable.
 bool read_all(hid_t loc, const char* name, std::vector<double>& out);
 bool read_all(hid_t loc, const char* name, std::vector<long long>& out);
+/// The whole of dataset `where`/`name`, which must hold `expected` values: checked before anything
+/// is allocated (a flipped byte in a dimension must not ask for 10^12 values). Empty, or what is
+/// wrong, naming the dataset: missing, of another size, or unreadable (its checksum does not match).
+std::string read_expected(hid_t loc, const std::string& where, const char* name, size_t expected, std::vector<double>& out);
+std::string read_expected(hid_t loc, const std::string& where, const char* name, size_t expected, std::vector<long long>& out);
 
 /// A scalar attribute of an object (written by every rank with the same value: collective).
 void write_attribute(H5Calls& h5, hid_t loc, const char* name, double value);
