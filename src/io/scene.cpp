@@ -4,9 +4,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -198,12 +201,16 @@ void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
     const YAML::Node c = o.node("checkpoint_every");
     const char* expected = "expected a number of steps (an integer >= 1) or a wall time with its unit, e.g. \"600 s\", \"10 min\", \"2 h\"";
     std::istringstream in(c.IsScalar() ? c.Scalar() : std::string());
-    double value = 0.0;
-    std::string unit, rest;
-    in >> value >> unit;
+    std::string number, unit, rest;
+    in >> number >> unit;
     if (!unit.empty()) {
       in >> rest;
-      if (!(value > 0.0) || !rest.empty() || (unit != "s" && unit != "min" && unit != "h"))
+      char* end = nullptr;
+      errno = 0;
+      const double value = std::strtod(number.c_str(), &end);
+      if (errno == ERANGE || !std::isfinite(value))  // "1e400 h": say so, not "unexpected 'h'"
+        rd.fail(c, "output.checkpoint_every", std::string(expected) + " (" + number + " is out of the range of a double)");
+      if (*end != '\0' || !(value > 0.0) || !rest.empty() || (unit != "s" && unit != "min" && unit != "h"))
         rd.fail(c, "output.checkpoint_every", expected);
       rs.checkpoint_wall = value * (unit == "s" ? 1.0 : unit == "min" ? 60.0 : 3600.0);
     } else {
@@ -667,6 +674,48 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   return scene;
 }
 
+/// A scene file's text as one YAML document, with the three things yaml-cpp would get wrong
+/// refused by name (issue 24): nesting of [ ] or { } deeper than 1000 (yaml-cpp gives up with "bad
+/// file", or runs out of stack), a second document after '---' (yaml-cpp's Load ignores it), and
+/// YAML merge keys `<<:` (yaml-cpp reads `<<` as an ordinary key, so the merged keys went missing).
+YAML::Node parse_scene_text(const std::string& text, const std::string& label) {
+  int depth = 0, line = 1;
+  bool comment = false;
+  for (char c : text) {
+    if (c == '\n') {
+      ++line;
+      comment = false;
+    } else if (c == '#') {
+      comment = true;
+    } else if (!comment && (c == '[' || c == '{') && ++depth > 1000) {
+      throw InputError(label + ":" + std::to_string(line) + ": not valid YAML: lists or maps nested deeper than 1000 levels");
+    } else if (!comment && (c == ']' || c == '}')) {
+      --depth;
+    }
+  }
+  const std::vector<YAML::Node> docs = YAML::LoadAll(text);
+  if (docs.size() > 1)
+    throw InputError(label + ":" + std::to_string(docs[1].Mark().line + 1) +
+                     ": a second YAML document (after '---'): a scene is one document; remove the '---' or give the rest its own file");
+  const YAML::Node root = docs.empty() ? YAML::Node() : docs[0];
+  // Merge keys, anywhere (an explicit stack: no recursion on a deep tree).
+  std::vector<YAML::Node> todo{root};
+  while (!todo.empty()) {
+    const YAML::Node n = todo.back();
+    todo.pop_back();
+    if (n.IsSequence())
+      for (const auto& item : n) todo.push_back(item);
+    if (!n.IsMap()) continue;
+    for (const auto& kv : n) {
+      if (kv.first.IsScalar() && kv.first.Scalar() == "<<")
+        throw InputError(label + ":" + std::to_string(kv.first.Mark().line + 1) +
+                         ": '<<': YAML merge keys are not supported; write the keys out (an alias *name of a whole value works)");
+      todo.push_back(kv.second);
+    }
+  }
+  return root;
+}
+
 Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
            const std::vector<std::string>& overrides, const MeshLoader& mesh_loader = read_mesh) {
   YAML::Node root;
@@ -740,9 +789,10 @@ Scene read_scene(const std::string& path, const std::vector<std::string>& overri
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": cannot open the scene file (no such file)");
     if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": cannot open the scene file (not a file)");
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open the scene file");
-    return load([&] { return YAML::LoadFile(path); }, path, overrides);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return load([&] { return parse_scene_text(text, path); }, path, overrides);
   }
   // Rank 0 reads the file and the mesh; every rank parses the same text, so every rank reaches the
   // mesh (or fails with the same message) at the same point, and gmsh runs once per run.
@@ -765,11 +815,11 @@ Scene read_scene(const std::string& path, const std::vector<std::string>& overri
     const std::string b = broadcast_text(std::string(bytes.begin(), bytes.end()), comm);
     return rank == 0 ? unpack(bytes) : unpack(std::vector<char>(b.begin(), b.end()));
   };
-  return load([&] { return YAML::Load(text); }, path, overrides, from_rank0);
+  return load([&] { return parse_scene_text(text, path); }, path, overrides, from_rank0);
 }
 
 Scene read_scene_text(const std::string& yaml, const std::string& label, const std::vector<std::string>& overrides) {
-  return load([&] { return YAML::Load(yaml); }, label, overrides);
+  return load([&] { return parse_scene_text(yaml, label); }, label, overrides);
 }
 
 }  // namespace alphaflex
