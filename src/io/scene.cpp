@@ -4,6 +4,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -643,8 +645,17 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   // (io/scene_modes.hpp); a run ignores them.
   rd.read_parameters(root["parameters"]);
   scene.name = top.text("name", std::filesystem::path(label).stem().string());
-  if (scene.name.empty() || scene.name.find_first_of("/\\ ") != std::string::npos)
-    rd.fail(root["name"], "name", "expected a plain file name (no spaces or slashes)");
+  // The name of the results' files (NAME.h5, NAME.xdmf, NAME.csv): a safe set, so that every file
+  // system and ParaView's XDMF reader take them (a non-ASCII name broke the reader; issue 24).
+  const bool safe = std::all_of(scene.name.begin(), scene.name.end(),
+                                [](char c) {
+                                  const auto u = static_cast<unsigned char>(c);
+                                  return (u < 0x80 && std::isalnum(u)) || c == '_' || c == '-' || c == '.' || c == '+';
+                                });
+  if (scene.name.empty() || scene.name.size() > 100 || !safe || scene.name[0] == '.' || scene.name[0] == '-')
+    rd.fail(root["name"], "name",
+            "expected a plain file name of 1 to 100 characters from A-Z a-z 0-9 _ - . + (not starting with . or -), got '" +
+                scene.name.substr(0, 100) + (scene.name.size() > 100 ? "...'" : "'"));
   scene.description = top.text("description");
   read_solver(rd, root["solver"], scene.settings, scene.warnings);
   read_output(rd, root["output"], scene.settings);

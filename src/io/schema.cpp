@@ -1,9 +1,8 @@
 #include "alphaflex/io/schema.hpp"
 
-#include <set>
-
 #include <algorithm>
 #include <map>
+#include <set>
 
 namespace alphaflex::input {
 
@@ -202,6 +201,14 @@ std::string Reader::item_name(const YAML::Node& item, const char* list, size_t i
   path = std::string(list) + "[" + std::to_string(i) + "]";
   if (!item.IsMap()) fail(item, path, not_a_map);
   const std::string name = text(need(item, "name", path), path + ".name");
+  // Names go to messages, the CSV header and the results: printable ASCII only (a newline, a tab, a
+  // NUL byte or 300 characters broke them; issue 24), docs/input.md "Names".
+  const bool printable = std::all_of(name.begin(), name.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
+  if (name.empty() || name.size() > 100 || !printable || name.front() == ' ' || name.back() == ' ')
+    fail(item["name"], path + ".name",
+         "expected a name of 1 to 100 printable ASCII characters (letters, digits, punctuation, inner spaces; no control "
+         "characters, no leading or trailing space), got " + std::to_string(name.size()) + " characters" +
+             (printable ? std::string() : " with a control or non-ASCII character"));
   path = std::string(list) + "[" + name + "]";
   return name;
 }
