@@ -690,28 +690,38 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
 /// file", or runs out of stack), a second document after '---' (yaml-cpp's Load ignores it), and
 /// YAML merge keys `<<:` (yaml-cpp reads `<<` as an ordinary key, so the merged keys went missing).
 YAML::Node parse_scene_text(const std::string& text, const std::string& label) {
+  // Nesting, and a document marker '---' after content (a line of its own, or followed by a space):
+  // found in the text (yaml-cpp's LoadAll loops for ever on some broken files).
   int depth = 0, line = 1;
-  bool comment = false;
-  for (char c : text) {
+  bool comment = false, content = false, line_start = true;
+  for (size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (line_start && text.compare(k, 3, "---") == 0 && (k + 3 == text.size() || std::isspace(static_cast<unsigned char>(text[k + 3]))) &&
+        content)
+      throw InputError(label + ":" + std::to_string(line) +
+                       ": a second YAML document (after '---'): a scene is one document; remove the '---' or give the rest its own file");
+    line_start = false;
     if (c == '\n') {
       ++line;
       comment = false;
+      line_start = true;
     } else if (c == '#') {
       comment = true;
-    } else if (!comment && (c == '[' || c == '{') && ++depth > 1000) {
-      throw InputError(label + ":" + std::to_string(line) + ": not valid YAML: lists or maps nested deeper than 1000 levels");
-    } else if (!comment && (c == ']' || c == '}')) {
-      --depth;
+    } else if (!comment && c != ' ' && c != '\t' && c != '\r') {
+      content = true;
+      if ((c == '[' || c == '{') && ++depth > 1000)
+        throw InputError(label + ":" + std::to_string(line) + ": not valid YAML: lists or maps nested deeper than 1000 levels");
+      if (c == ']' || c == '}') --depth;
     }
   }
-  const std::vector<YAML::Node> docs = YAML::LoadAll(text);
-  if (docs.size() > 1)
-    throw InputError(label + ":" + std::to_string(docs[1].Mark().line + 1) +
-                     ": a second YAML document (after '---'): a scene is one document; remove the '---' or give the rest its own file");
-  const YAML::Node root = docs.empty() ? YAML::Node() : docs[0];
+  const YAML::Node root = YAML::Load(text);
   // Merge keys, anywhere (an explicit stack: no recursion on a deep tree).
+  // Aliases can make a small file a huge tree (an alias of a list of aliases ...): the walk stops at
+  // 10^7 values, far beyond any scene.
   std::vector<YAML::Node> todo{root};
-  while (!todo.empty()) {
+  for (long visited = 0; !todo.empty(); ++visited) {
+    if (visited > 10000000)
+      throw InputError(label + ": not a scene: its aliases (*name) expand to more than 10^7 values");
     const YAML::Node n = todo.back();
     todo.pop_back();
     if (n.IsSequence())
