@@ -217,6 +217,13 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
                                   : std::function<void(const MechanicalState&, double)>());
     } catch (const SolverError& e) {
       if (writer) writer->finish();
+      // A body nothing holds (no joint, no stiffness) has no equilibrium: bad input, named (the
+      // factorization alone said "zero pivot").
+      const std::string unheld = load_steps == 0 ? find_unheld_motion(sub, s) : std::string();
+      if (!unheld.empty())
+        throw InputError(scene.file + ": the " + (is_static ? "static analysis" : "initial static equilibrium") +
+                         " has no equilibrium to find: no joint and no stiffness acts on these motions (attach the body "
+                         "by a joint or a spring, or run a dynamic analysis):" + unheld);
       throw SolverError(std::string(is_static ? "static analysis: " : "initial static equilibrium: ") + e.what() +
                         (writer && is_static ? "\n  The converged load steps are written to " + writer->xdmf_path() + "." : ""));
     } catch (const InputError& e) {
