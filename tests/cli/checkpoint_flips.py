@@ -14,7 +14,6 @@ reference's sensor rows bit for bit (a byte HDF5 does not use). Never exit 0 wit
 for 10^12 values). With --changed key=value, a restart from the checkpoint with that change of
 physics (e.g. a beam's EA) must warn naming the element, and one without it must not.
 """
-import argparse
 import os
 import re
 import shutil
@@ -23,25 +22,20 @@ import sys
 
 import h5py
 
+import run_options
+
 CRASH = re.compile(r"Segmentation fault|Caught signal|PETSC ERROR|internal error|terminate called|Aborted|core dumped|"
                    r"HDF5-DIAG|bad_alloc")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--exe", required=True)
-    ap.add_argument("--scene", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--np", type=int, default=1)
-    ap.add_argument("--mpirun", default="mpirun")
+    ap = run_options.parser(__doc__)
     ap.add_argument("--flips", type=int, default=40)
-    ap.add_argument("--set", action="append", default=[])
     ap.add_argument("--changed", default="", help="key=value: restart with this change of physics instead of flips; "
                     "the restart must warn naming the element (ELEMENT is the regex of its name)")
     ap.add_argument("--element", default=".*")
     a = ap.parse_args()
-    name = re.search(r"^name:\s*(\S+)", open(a.scene).read(), re.M).group(1)
-    shutil.rmtree(a.out, ignore_errors=True)
+    name = run_options.prepare(a)
     pre = [a.mpirun, "--oversubscribe", "-np", str(a.np)] if a.np > 1 else []
 
     def run(outdir, extra):

@@ -21,16 +21,16 @@ tmpfs_filled: the same tmpfs, filled by another process while the run goes on (t
     HDF5 too. Exit 6, no crash, no HDF5 stack, consistent files; a checkpoint only if the space the
     failed part gave back holds one.
 """
-import argparse
 import os
 import re
-import shutil
 import subprocess
 import sys
 import time
 import xml.etree.ElementTree as ET
 
 import h5py
+
+import run_options
 
 CRASH = re.compile(r"Segmentation fault|Caught signal|PETSC ERROR|MPI_ABORT|internal error|terminate called|"
                    r"Aborted|core dumped|HDF5-DIAG")
@@ -88,18 +88,11 @@ def check_consistent(outdir, name):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = run_options.parser(__doc__)
     ap.add_argument("--mode", choices=["injected", "index", "tmpfs", "tmpfs_filled"], required=True)
-    ap.add_argument("--exe", required=True)
-    ap.add_argument("--scene", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--np", type=int, default=1)
-    ap.add_argument("--mpirun", default="mpirun")
     ap.add_argument("--fault", default="")
-    ap.add_argument("--set", action="append", default=[])
     a = ap.parse_args()
-    name = re.search(r"^name:\s*(\S+)", open(a.scene).read(), re.M).group(1)
-    shutil.rmtree(a.out, ignore_errors=True)
+    name = run_options.prepare(a)
     os.makedirs(a.out)
 
     if a.mode.startswith("tmpfs"):

@@ -10,14 +10,14 @@ naming a process that no longer holds it): a run C must take the stale lock over
 so), finish with exit 0 and the results of C alone (the CSV's t increasing from 0 to t_end), and
 remove the lock file at its end.
 """
-import argparse
 import os
 import re
-import shutil
 import signal
 import subprocess
 import sys
 import time
+
+import run_options
 
 
 def fail(msg, err=""):
@@ -26,15 +26,9 @@ def fail(msg, err=""):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--exe", required=True)
-    ap.add_argument("--scene", required=True)
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--np", type=int, default=1)
-    ap.add_argument("--mpirun", default="mpirun")
+    ap = run_options.parser(__doc__)
     a = ap.parse_args()
-    name = re.search(r"^name:\s*(\S+)", open(a.scene).read(), re.M).group(1)
-    shutil.rmtree(a.out, ignore_errors=True)
+    name = run_options.prepare(a)
     lock = os.path.join(a.out, name + ".lock")
 
     def command(t_end):
