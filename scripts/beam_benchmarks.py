@@ -13,8 +13,8 @@ Runs are cached in a temp dir keyed on the executable, the scene and the setting
 import argparse
 import hashlib
 import os
-import re
 import subprocess
+import sys
 import tempfile
 
 import h5py
@@ -22,6 +22,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+import alphaflex_results as ar  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REF = os.path.join(ROOT, "tests", "reference")
@@ -44,24 +47,18 @@ def run(scene, **sets):
     key = hashlib.sha1(repr((EXE, os.path.getmtime(EXE), scene_path, os.path.getmtime(scene_path),
                              sorted(sets.items()))).encode()).hexdigest()[:16]
     out = os.path.join(CACHE, f"{scene}_{key}")
-    log = os.path.join(out, "stdout.txt")
-    if not os.path.exists(log):
+    if not os.path.exists(os.path.join(out, scene + ".summary.json")):
         cmd = [EXE, "run", scene_path, "-o", out]
         for k, v in sets.items():
             cmd += ["--set", f"{k}={v}"]
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0:
             raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
-        with open(log, "w") as f:
-            f.write(p.stdout)
-    text = open(log).read()
-    m = re.search(r"Newton iterations\s+total (\d+), mean ([\d.eE+-]+) per step, max (\d+)", text)
-    w = re.search(r"wall time\s+([\d.eE+-]+) s \(([\d.eE+-]+) us per step\)", text)
-    u = re.search(r"unknowns\s+(\d+)", text)
-    phases = {k: float(v) for k, v in re.findall(r"^\s+(assembly|factorization|solve|output|other)\s+[\d.]+ s \(([\d.]+) %\)",
-                                                   text, re.M)}
-    stats = {"newton_mean": float(m.group(2)), "newton_max": int(m.group(3)), "wall": float(w.group(1)),
-             "us_per_step": float(w.group(2)), "unknowns": int(u.group(1)), "phases": phases}
+    j = ar.load_summary(out, scene)  # OUTDIR/NAME.summary.json (python/alphaflex_results.py)
+    wall = j["wall_time"]
+    phases = {k: wall[k]["percent"] for k in ("assembly", "factorization", "solve", "output", "other")}
+    stats = {"newton_mean": j["newton"]["mean_per_step"], "newton_max": j["newton"]["max"], "wall": wall["s"],
+             "us_per_step": wall["us_per_step"], "unknowns": j["unknowns"], "phases": phases}
     data = np.genfromtxt(os.path.join(out, scene + ".csv"), delimiter=",", names=True)
     return data, stats, out
 

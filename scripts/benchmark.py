@@ -30,7 +30,6 @@ import csv
 import datetime
 import math
 import os
-import re
 import subprocess
 import sys
 import time
@@ -39,38 +38,37 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+import alphaflex_results as ar  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 PHASES = ("assembly", "factorization", "solve", "output", "other")
 
 
-def parse(text):
-    """The numbers of an `alphaflex run` summary."""
-    def num(pattern, cast=float, default=None):
-        m = re.search(pattern, text)
-        if not m:
-            if default is not None:
-                return default
-            raise RuntimeError(f"'{pattern}' not in the summary:\n{text}")
-        return cast(m.group(1))
+def parse(outdir, scene):
+    """The numbers of an `alphaflex run` summary (OUTDIR/NAME.summary.json, python/alphaflex_results.py)."""
+    j = ar.load_summary(outdir, os.path.splitext(os.path.basename(scene))[0])
+    mumps = j.get("mumps", {})
+    wall = j["wall_time"]
     out = {
-        "unknowns": num(r"unknowns\s+(\d+)", int),
-        "steps": num(r"steps\s+(\d+)", int),
-        "newton": num(r"Newton iterations\s+total (\d+)", int),
-        "factorizations": num(r"factorizations\s+(\d+) numeric", int),
-        "wall": num(r"wall time\s+([\d.]+) s"),
-        "mumps_entries": num(r"MUMPS\s+([\d.e+]+) entries", float, 0.0),
-        "mumps_flops": num(r"entries in the factors, ([\d.e+]+) flop", float, 0.0),
-        "mumps_mb": num(r"flop per factorization, ([\d.e+]+) MB in all", float, 0.0),
-        "rss_mb": num(r"memory\s+peak ([\d.e+]+) MB resident in all ranks"),
-        "rss_max_mb": num(r"MB resident in all ranks \(([\d.e+]+) MB largest rank\)"),
-        "scene_mb": num(r"([\d.e+]+) MB of it per rank for the scene's whole model", float, 0.0),
-        "checkpoint_mb": num(r"checkpoints\s+\d+ written \(([\d.e+-]+) MB each\)", float, 0.0),
-        "checkpoint_s": num(r"\n\s+checkpoints\s+([\d.]+) s", float, 0.0),
-        "dense": "dense LU with partial pivoting" in text,
+        "unknowns": j["unknowns"],
+        "steps": j["steps"],
+        "newton": j["newton"]["total"],
+        "factorizations": j["factorizations"]["numeric"],
+        "wall": wall["s"],
+        "mumps_entries": mumps.get("factor_entries", 0.0),
+        "mumps_flops": mumps.get("flops_per_factorization", 0.0),
+        "mumps_mb": mumps.get("memory_mb_all_ranks", 0.0),
+        "rss_mb": j["memory_mb"]["peak_all_ranks"],
+        "rss_max_mb": j["memory_mb"]["peak_largest_rank"],
+        "scene_mb": j["memory_mb"].get("scene_per_rank", 0.0),
+        "checkpoint_mb": j["checkpoints"]["bytes_each"] / 1e6 if j["checkpoints"]["written"] else 0.0,
+        "checkpoint_s": wall["checkpoints"]["s"],
+        "dense": j["linear_solver"]["dense"],
     }
     for phase in ("setup",) + PHASES:
-        out[phase] = num(rf"\n\s+{phase}\s+([\d.]+) s")
+        out[phase] = wall[phase]["s"]
     return out
 
 
@@ -86,7 +84,7 @@ def alphaflex(exe, scene, outdir, sets, ranks=1, extra=()):
     total = time.time() - t0
     if p.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
-    r = parse(p.stdout)
+    r = parse(outdir, scene)
     r["process"] = total  # includes reading the scene, meshing with gmsh, building the model
     return r
 

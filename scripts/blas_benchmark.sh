@@ -33,7 +33,18 @@ run() {  # variant case scene-arguments...
     pthread2) setalt openblas-pthread openblas-pthread; envs=(OPENBLAS_NUM_THREADS=2) ;;
   esac
   text=$(cd "$out" && env "${envs[@]}" /usr/bin/time -f "TIME %e %U %S" "$exe" run "$@" -o "$out/run" 2>&1)
-  echo "$v|$c|$(awk '/^  unknowns/ {print $2}' <<<"$text")|$(awk '/^  factorizations/ {print $2}' <<<"$text")|$(awk '/^    factorization/ {print $2}' <<<"$text")|$(awk '/^  wall time/ {print $3}' <<<"$text")|$(grep '^TIME' <<<"$text" | cut -d' ' -f2-)|$(grep '^  BLAS' <<<"$text" | cut -c23-)"
+  # The run's figures from OUTDIR/NAME.summary.json (python/alphaflex_results.py).
+  local figures
+  figures=$(/usr/bin/python3 - "$out/run" "$(basename "$1" .yaml)" "$root/python" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[3])
+import alphaflex_results as ar
+j = ar.load_summary(sys.argv[1], sys.argv[2])
+print(f"{j['unknowns']}|{j['factorizations']['numeric']}|{j['wall_time']['factorization']['s']:.3f}|{j['wall_time']['s']:.3f}")
+print(j["blas"])
+PY
+)
+  echo "$v|$c|$(head -1 <<<"$figures")|$(grep '^TIME' <<<"$text" | cut -d' ' -f2-)|$(tail -1 <<<"$figures")"
 }
 for ((rep = 1; rep <= reps; rep++)); do
   for c in g16 g32 g48 beam; do

@@ -11,8 +11,8 @@ docs/figures/. Runs are cached in a temp dir keyed on the executable, the scene 
 import argparse
 import hashlib
 import os
-import re
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -20,6 +20,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+import alphaflex_results as ar  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REF = os.path.join(ROOT, "tests", "reference")
@@ -37,21 +40,16 @@ def run(scene, h, rho=0.7, **extra):
     key = hashlib.sha1(repr((EXE, os.path.getmtime(EXE), scene_path, os.path.getmtime(scene_path),
                              sorted(sets.items()))).encode()).hexdigest()[:16]
     out = os.path.join(CACHE, f"{scene}_{key}")
-    log = os.path.join(out, "stdout.txt")
-    if not os.path.exists(log):
+    if not os.path.exists(os.path.join(out, scene + ".summary.json")):
         cmd = [EXE, "run", scene_path, "-o", out]
         for k, v in sets.items():
             cmd += ["--set", f"{k}={v}"]
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0:
             raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
-        with open(log, "w") as f:
-            f.write(p.stdout)
-    text = open(log).read()
-    m = re.search(r"Newton iterations\s+total (\d+), mean ([\d.eE+-]+) per step, max (\d+)", text)
-    w = re.search(r"wall time\s+([\d.eE+-]+) s \(([\d.eE+-]+) us per step\)", text)
-    stats = {"newton_mean": float(m.group(2)), "newton_max": int(m.group(3)),
-             "wall_us_per_step": float(w.group(2))}
+    j = ar.load_summary(out, scene)  # OUTDIR/NAME.summary.json (python/alphaflex_results.py)
+    stats = {"newton_mean": j["newton"]["mean_per_step"], "newton_max": j["newton"]["max"],
+             "wall_us_per_step": j["wall_time"]["us_per_step"]}
     data = np.genfromtxt(os.path.join(out, scene + ".csv"), delimiter=",", names=True)
     return data, stats
 

@@ -11,14 +11,17 @@ docs/figures/shell_sze.png and docs/benchmarks/shells.md. --quick skips the fine
 """
 import argparse
 import os
-import re
 import subprocess
+import sys
 import tempfile
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+import alphaflex_results as ar  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REF = os.path.join(ROOT, "tests", "reference")
@@ -47,7 +50,7 @@ def read_ref(name):
 
 
 def run(exe, scene, sets, tag):
-    """Run a scene; return (sensor table, summary text)."""
+    """Run a scene; return (sensor table, output directory)."""
     out = os.path.join(OUT, f"{scene}_{tag}")
     cmd = [exe, "run", os.path.join(ROOT, "inputs", scene + ".yaml"), "-o", out]
     for k, v in sets.items():
@@ -55,18 +58,15 @@ def run(exe, scene, sets, tag):
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
-    return np.genfromtxt(os.path.join(out, scene + ".csv"), delimiter=",", names=True), p.stdout
+    return np.genfromtxt(os.path.join(out, scene + ".csv"), delimiter=",", names=True), out
 
 
-def stats(text):
-    m = re.search(r"load steps\s+(\d+)", text)
-    n = re.search(r"Newton iterations\s+total (\d+), mean ([\d.eE+-]+) per step, max (\d+)", text)
-    u = re.search(r"unknowns\s+(\d+)", text)
-    w = re.search(r"wall time\s+([\d.eE+-]+) s", text)
-    a = re.search(r"^\s+assembly\s+([\d.]+) s", text, re.M)
-    return {"steps": int(m.group(1)), "newton": int(n.group(1)), "newton_mean": float(n.group(2)),
-            "newton_max": int(n.group(3)), "unknowns": int(u.group(1)), "wall": float(w.group(1)),
-            "assembly": float(a.group(1)) if a else float("nan")}
+def stats(out, scene):
+    """Figures of a run's summary (OUTDIR/NAME.summary.json, python/alphaflex_results.py)."""
+    j = ar.load_summary(out, scene)
+    return {"steps": j["steps"], "newton": j["newton"]["total"], "newton_mean": j["newton"]["mean_per_step"],
+            "newton_max": j["newton"]["max"], "unknowns": j["unknowns"], "wall": j["wall_time"]["s"],
+            "assembly": j["wall_time"]["assembly"]["s"]}
 
 
 def errors(data, ref, sensor):
@@ -87,12 +87,12 @@ def main():
     rows, conv = [], []
     for ax, (scene, refname, sensors, sets, fine, title) in zip(axes.flat, CASES):
         ref = read_ref(refname)
-        data, text = run(exe, scene, sets, "paper")
-        st = stats(text)
+        data, out = run(exe, scene, sets, "paper")
+        st = stats(out, scene)
         fine_data = None
         if not args.quick:
-            fine_data, fine_text = run(exe, scene, fine, "fine")
-            fst = stats(fine_text)
+            fine_data, fine_out = run(exe, scene, fine, "fine")
+            fst = stats(fine_out, scene)
         for k, s in enumerate(sensors):
             c = f"C{k}"
             ax.plot(np.abs(ref[s]), ref["load_fraction"], "o", color=c, mfc="none", label=f"|{s}| Sze et al. (S4R)")

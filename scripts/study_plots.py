@@ -14,32 +14,27 @@ Writes next to the CSV, by the study's mode:
   blow_up      NAME_blow_up.png         growth of the multipliers' second difference vs the predicted roots
   fidelity     NAME_fidelity.png        sensor differences vs CPU time, strain-energy shares
 """
-import csv
 import math
 import os
 import sys
+import textwrap
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter, NullFormatter  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+import alphaflex_results as ar  # noqa: E402
 
 MARKERS = "osD^v<>ph*"
 
 
 def read(path):
-    comments, rows = [], []
-    with open(path) as fh:
-        lines = [ln for ln in fh]
-    body = []
-    for ln in lines:
-        if ln.startswith("#"):
-            comments.append(ln[1:].strip())
-        else:
-            body.append(ln)
-    for r in csv.DictReader(body):
-        rows.append(r)
-    return comments, rows
+    """The '#' comments and the rows (dicts of strings) of a study CSV (python/alphaflex_results.py)."""
+    study = ar.load_study(path)
+    return study.comments, study.rows
 
 
 def f(x):
@@ -80,8 +75,29 @@ def grid_for(n):
     return rows, cols
 
 
+def plain_ticks(fig):
+    """Tick labels as plain numbers (0.001, 1e-06) rather than powers of ten in mathtext."""
+    plain = FuncFormatter(lambda v, _: f"{v:g}")
+    for ax in fig.axes:
+        for axis, scale in ((ax.xaxis, ax.get_xscale()), (ax.yaxis, ax.get_yscale())):
+            if scale == "log":
+                axis.set_major_formatter(plain)
+                axis.set_minor_formatter(NullFormatter())
+
+
+def suptitle(fig, text, fontsize=9):
+    """A figure title wrapped to the figure's width (never cut off), with room kept for it."""
+    width = int(fig.get_figwidth() * 72 / (0.55 * fontsize))  # characters per line at this size
+    lines = [w for part in text.split("\n") for w in (textwrap.wrap(part, width) or [""])]
+    fig.suptitle("\n".join(lines), fontsize=fontsize)
+    fig._title_lines = len(lines)
+
+
 def save(fig, path):
-    fig.tight_layout()
+    plain_ticks(fig)
+    lines = getattr(fig, "_title_lines", 0)
+    top = 1.0 - (lines * 11 + 6) / (72 * fig.get_figheight()) if lines else 1.0
+    fig.tight_layout(rect=(0, 0, 1, top))
     fig.savefig(path, dpi=90)
     plt.close(fig)
     print("wrote", path)
@@ -172,11 +188,15 @@ def convergence(csv_path, comments, rows, base):
     where = axes[nr - 1][nc - 1] if spare else axes[0][0]
     where.legend(list(seen.values()), list(seen.keys()), fontsize=8 if spare else 7,
                  loc="center" if spare else "best")
-    fig.suptitle(f"{name}: work–precision (error at t_end vs {cpu_note.split(';')[0][5:]})\n{ref[:160]}", fontsize=9)
+    suptitle(fig, f"{name}: work–precision (error at t_end vs {cpu_note.split(';')[0][5:]})\n{ref}")
     save(fig, os.path.join(base + "_work_precision.png"))
 
-    # Convergence: error vs h, fitted slopes in the legend.
+    # Convergence: error vs h, fitted slopes in the legend — as the study fitted them
+    # (NAME_slopes.csv): errors at round-off or at the reference's accuracy are no order.
     ours = [r for r in rows if r["method"] == "alphaflex"]
+    fits = {}
+    if os.path.exists(base + "_slopes.csv"):
+        fits = {(r["label"], r["error"]): r for r in ar.load_study(base + "_slopes.csv").rows}
     fig, axes = plt.subplots(nr, nc, figsize=(5.2 * nc, 4.2 * nr), squeeze=False)
     for k, en in enumerate(names):
         ax = axes[k // nc][k % nc]
@@ -188,8 +208,18 @@ def convergence(csv_path, comments, rows, base):
             pts = [(a, b) for a, b in zip(h, e) if b > 0]
             if not pts:
                 continue
-            s = slope(h, e)
-            ax.loglog(*zip(*sorted(pts)), label=f"{lab} (slope {s:.2f})", **style(i, False))
+            fit = fits.get((lab, en))
+            if fit is None:  # a CSV without NAME_slopes.csv (older studies): the plain fit
+                fit = {"slope": "%.2f" % slope(h, e), "at_floor": "0", "meaning": "%.2f" % slope(h, e)}
+            if fit["slope"] and fit["at_floor"] == "0":
+                text = f"slope {f(fit['slope']):.2f}"
+            elif fit["slope"]:
+                text = f"slope {f(fit['slope']):.2f} for h > {f(fit['h_floor']):g}; below, the errors stop decreasing"
+            else:
+                text = "no order: " + fit["meaning"].replace("none: ", "")
+            ax.loglog(*zip(*sorted(pts)), label="\n".join(textwrap.wrap(f"{lab} ({text})", 48)), **style(i, False))
+            if fit["at_floor"] not in ("", "0") and f(fit.get("floor", "")) > 0:
+                ax.axhline(f(fit["floor"]), color="C%d" % i, ls=(0, (1, 3)), lw=0.8)
             hmin, hmax = min(hmin, min(p[0] for p in pts)), max(hmax, max(p[0] for p in pts))
             emin = min(emin, min(p[1] for p in pts))
         if hmax > 0:
@@ -212,7 +242,7 @@ def convergence(csv_path, comments, rows, base):
         ax.legend(fontsize=7)
     for k in range(len(names), nr * nc):
         axes[k // nc][k % nc].axis("off")
-    fig.suptitle(f"{name}: convergence at t_end (least-squares slopes over all h)\n{ref[:160]}", fontsize=9)
+    suptitle(fig, f"{name}: convergence at t_end (least-squares slopes over the h whose errors are above round-off and the reference's accuracy)\n{ref}")
     save(fig, base + "_convergence.png")
 
     # Cost: Newton iterations per step and CPU per step vs h.
@@ -235,7 +265,7 @@ def convergence(csv_path, comments, rows, base):
     for a in ax:
         a.grid(True, which="both", alpha=0.3)
         a.legend(fontsize=7)
-    fig.suptitle(f"{name}: cost ({cpu_note})", fontsize=9)
+    suptitle(fig, f"{name}: cost ({cpu_note})")
     save(fig, base + "_cost.png")
 
     if "cond_2norm" in rows[0]:
@@ -253,7 +283,7 @@ def convergence(csv_path, comments, rows, base):
         for a in ax:
             a.grid(True, which="both", alpha=0.3)
             a.legend(fontsize=7)
-        fig.suptitle(f"{name}: conditioning of the iteration matrix at t_end", fontsize=9)
+        suptitle(fig, f"{name}: conditioning of the iteration matrix at t_end")
         save(fig, base + "_conditioning.png")
 
 
@@ -261,8 +291,7 @@ def read_history(base):
     path = base + "_history.csv"
     if not os.path.exists(path):
         return None
-    with open(path) as fh:
-        return list(csv.DictReader(fh))
+    return ar.load_study(path).rows
 
 
 def oscillation(csv_path, comments, rows, base):
@@ -321,7 +350,7 @@ def oscillation(csv_path, comments, rows, base):
         r1 = [r for r in rows if r["label"] == labels[1] and f(r["h"]) == hs[0]]
         if r0 and r1:
             ratio = f"; TV({main}) {labels[1]} / {labels[0]} = {f(r1[0]['tv_' + main]) / f(r0[0]['tv_' + main]):.2f} at h = {hs[0]:g} s"
-    fig.suptitle(f"{name}: oscillations of the multipliers{ratio}", fontsize=9)
+    suptitle(fig, f"{name}: oscillations of the multipliers{ratio}")
     save(fig, base + "_oscillation.png")
 
 
@@ -348,7 +377,7 @@ def blow_up(csv_path, comments, rows, base):
            title="growth of the multipliers' second difference (dotted: |ζ|ⁿ of the largest root of ϱ, σ)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
-    fig.suptitle(f"{name}: parameters outside the stability conditions (eq. 18, 20)", fontsize=9)
+    suptitle(fig, f"{name}: parameters outside the stability conditions (eq. 18, 20)")
     save(fig, base + "_blow_up.png")
 
 
@@ -372,8 +401,7 @@ def fidelity(csv_path, comments, rows, base):
     ax[0].legend(fontsize=7)
     epath = base + "_energy.csv"
     if os.path.exists(epath):
-        with open(epath) as fh:
-            er = list(csv.DictReader(fh))
+        er = ar.load_study(epath).rows
         variants = labels_in_order([{"label": r["variant"]} for r in er])
         parts = labels_in_order([{"label": r["part"]} for r in er])
         bottom = np.zeros(len(variants))
@@ -387,7 +415,7 @@ def fidelity(csv_path, comments, rows, base):
         ax[1].set_xticklabels(variants, fontsize=7, rotation=15)
         ax[1].set(ylabel="share of the time-mean strain energy (%)", title="strain energy by flexible part")
         ax[1].legend(fontsize=7)
-    fig.suptitle(f"{name}: model fidelity against cost\n{ref[:160]}", fontsize=9)
+    suptitle(fig, f"{name}: model fidelity against cost\n{ref}")
     save(fig, base + "_fidelity.png")
 
 

@@ -26,6 +26,7 @@
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/modal_run.hpp"
 #include "alphaflex/app/simulation.hpp"
+#include "alphaflex/app/summary_json.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/mpi_singleton.hpp"
@@ -215,6 +216,10 @@ void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, 
   if (rank == 0) {
     if (sum.projection > 1e-12) std::cout << "  consistent start: initial coordinates moved by at most " << sum.projection << "\n";
     std::cout << alphaflex::format_summary(scene, sum);
+    // The same figures for scripts (python/alphaflex_results.py); rank 0 writes, end_run makes a
+    // failure every rank's exit code.
+    std::cout << "  summary  "
+              << alphaflex::write_summary_json(cl.outdir, scene.name, alphaflex::summary_json(scene, sum)) << "\n";
   }
 }
 
@@ -292,7 +297,11 @@ void modes_command(const CommandLine& cl, int rank, MPI_Comm exit_comm, double e
   opt.exit_comm = exit_comm;
   opt.exit_timeout = exit_timeout;
   const alphaflex::ModalRunSummary sum = alphaflex::run_modes(scene, opt, PETSC_COMM_WORLD);
-  if (rank == 0) std::cout << alphaflex::format_modes(scene, sum);
+  if (rank == 0) {
+    std::cout << alphaflex::format_modes(scene, sum);
+    std::cout << "  summary: "
+              << alphaflex::write_summary_json(cl.outdir, scene.name + "_modes", alphaflex::modes_json(scene, sum)) << "\n";
+  }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "alphaflex/app/progress.hpp"
 #include "alphaflex/app/run_objects.hpp"
 #include "alphaflex/app/stop_signals.hpp"
+#include "alphaflex/app/summary_json.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/core/blas_library.hpp"
@@ -488,11 +489,11 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
 std::string format_summary(const Scene& scene, const RunSummary& s) {
   std::ostringstream os;
   os.precision(4);
-  const double mean = s.steps ? static_cast<double>(s.newton_total) / s.steps : 0.0;
+  // Derived figures: the same function as the JSON summary's (app/summary_json.hpp).
+  const RunFigures fig = run_figures(s);
+  const double mean = fig.mean_newton, other = fig.other_time;
   const PhaseTimes& t = s.times;
-  const double other =
-      std::max(0.0, s.wall - t.setup - t.assembly - t.factorization - t.solve - t.output - s.checkpoint_time);
-  auto pct = [&](double x) { return s.wall > 0 ? 100.0 * x / s.wall : 0.0; };
+  auto pct = [&](double x) { return fig.percent(x); };
   os << "summary of " << scene.name << "\n"
      << "  unknowns            " << s.unknowns << " (" << s.coordinates << " coordinates, " << s.multipliers
      << " multipliers)\n"
@@ -508,14 +509,8 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << "  initial statics     " << s.static_steps << " load steps, " << s.static_cuts << " step cuts\n";
   if (s.ranks > 1) {
     // Partition quality (METIS): unknowns each rank owns, its ghost nodes, the couplings cut.
-    int lo = s.unknowns_per_rank.empty() ? 0 : s.unknowns_per_rank[0], hi = lo;
-    for (int u : s.unknowns_per_rank) {
-      lo = std::min(lo, u);
-      hi = std::max(hi, u);
-    }
-    const double avg = static_cast<double>(s.unknowns) / s.ranks;
     os << "  partition           METIS, " << s.ranks << " ranks, edge cut " << s.edge_cut << ", load imbalance "
-       << std::fixed << std::setprecision(3) << (avg > 0 ? hi / avg : 1.0) << std::defaultfloat << std::setprecision(4) << " (largest / mean unknowns per rank)\n"
+       << std::fixed << std::setprecision(3) << fig.load_imbalance << std::defaultfloat << std::setprecision(4) << " (largest / mean unknowns per rank)\n"
        << "    rank      unknowns   ghost nodes\n";
     for (int r = 0; r < s.ranks; ++r)
       os << "    " << std::setw(4) << r << std::setw(14) << s.unknowns_per_rank[static_cast<size_t>(r)] << std::setw(14)
@@ -547,7 +542,7 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << "  checkpoints         " << s.checkpoints << " written (" << std::setprecision(3) << s.checkpoint_bytes / 1e6
        << " MB each), the last: " << s.checkpoint << "\n" << std::setprecision(4);
   os << std::fixed << std::setprecision(3)
-     << "  wall time           " << s.wall << " s (" << (s.steps ? 1e6 * s.wall / s.steps : 0.0) << " us per step)\n"
+     << "  wall time           " << s.wall << " s (" << fig.us_per_step << " us per step)\n"
      << "    setup             " << t.setup << " s (" << std::setprecision(1) << pct(t.setup) << " %)\n" << std::setprecision(3)
      << "    assembly          " << t.assembly << " s (" << std::setprecision(1) << pct(t.assembly) << " %)\n" << std::setprecision(3)
      << "    factorization     " << t.factorization << " s (" << std::setprecision(1) << pct(t.factorization) << " %)\n" << std::setprecision(3)

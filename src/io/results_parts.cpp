@@ -39,6 +39,19 @@ ResultsParts::ResultsParts(const Subdomain& sub, const std::vector<ElementGrid>&
     connectivity_[k].add(grids[k].offset[r], cell_size(grids[k].shapes[r], grids[k].lines));
     local_elements_[k].push_back(static_cast<int>(e));
   }
+  // Bodies and links (results_layout.hpp): rows in the order of the global ids, which the local
+  // nodes and joints follow.
+  layout_ = node_layout(global, grids);
+  body_.total = layout_.bodies.size();
+  for (int i = 0; i < sub.num_owned_nodes(); ++i) {
+    const int r = layout_.body_row[static_cast<size_t>(sub.global_node(i))];
+    if (r >= 0) body_.add(static_cast<unsigned long long>(r), 1);
+  }
+  link_.total = 3 * layout_.links.size();
+  for (size_t c = 0; c < model_.constraints().size(); ++c) {
+    const int r = layout_.link_row[static_cast<size_t>(sub.global_constraint(static_cast<int>(c)))];
+    if (r >= 0) link_.add(3 * static_cast<unsigned long long>(r), 3);
+  }
   // A first estimate of an output step's bytes: its values, and ~1 KiB of HDF5 metadata per
   // dataset (object header, the group's index); measured after each step.
   unsigned long long values = node_.total * 26 + joint_.total * 9 + state_.conf.total + 2 * state_.dof.total + state_.mult.total;
@@ -80,6 +93,21 @@ void ResultsParts::write_topology(H5Calls& h5, hid_t file) const {
   ids.clear();
   for (size_t c = 0; c < model_.constraints().size(); ++c) ids.push_back(sub_.global_constraint(static_cast<int>(c)));
   write_int_rows(h5, topo, "joints", joint_, ids.data(), transfer_);
+  if (!layout_.all_bodies() && !layout_.bodies.empty()) {  // the body datasets' own rows, in order
+    ids.clear();
+    for (int i = 0; i < sub_.num_owned_nodes(); ++i)
+      if (layout_.body_row[static_cast<size_t>(sub_.global_node(i))] >= 0)
+        ids.push_back(layout_.body_row[static_cast<size_t>(sub_.global_node(i))]);
+    write_int_rows(h5, topo, "bodies", body_, ids.data(), transfer_);
+  }
+  if (!layout_.links.empty()) {  // polylines of 3 points: link_points rows 3r, 3r + 1, 3r + 2
+    ids.clear();
+    for (size_t c = 0; c < model_.constraints().size(); ++c) {
+      const int r = layout_.link_row[static_cast<size_t>(sub_.global_constraint(static_cast<int>(c)))];
+      for (int k = 0; r >= 0 && k < 3; ++k) ids.push_back(3 * r + k);
+    }
+    write_int_rows(h5, topo, "links", link_, ids.data(), transfer_);
+  }
   for (size_t k = 0; k < grids_.size(); ++k) {
     if (grids_[k].elements.empty()) continue;
     ids.clear();
@@ -129,7 +157,27 @@ std::vector<std::vector<double>> cell_data(const Model& model, const std::vector
   return data;
 }
 
+/// The position of a local node's reference point (a frame's origin, a planar node's point).
+Eigen::Vector3d node_point(const Node& n, const MechanicalState& s) {
+  if (n.spatial()) return pose_of(s.q.data() + n.first_conf).x;
+  const Eigen::Vector2d p = PlanarMarker::on_node(n, Eigen::Vector2d::Zero(), 0).position(s.q.segment(n.first_conf, n.nconf));
+  return {p[0], p[1], 0.0};
+}
+
 }  // namespace
+
+void ResultsParts::append_link(const Constraint& con, const Eigen::Vector3d& at, const MechanicalState& s,
+                               std::vector<double>& out) const {
+  // Body 1's centre → the joint → body 2's centre; a side that is the ground or a mesh node (drawn
+  // by its beam or shell) is the joint's point itself.
+  const auto& nodes = con.nodes();
+  auto side = [&](size_t k) {
+    if (k < nodes.size() && layout_.body_row[static_cast<size_t>(sub_.global_node(nodes[k]))] >= 0)
+      return node_point(model_.nodes()[static_cast<size_t>(nodes[k])], s);
+    return Eigen::Vector3d(at);
+  };
+  for (const Eigen::Vector3d& p : {side(0), Eigen::Vector3d(at), side(1)}) out.insert(out.end(), p.data(), p.data() + 3);
+}
 
 void ResultsParts::write_step(const MechanicalState& s, const std::string& group) {
   // This rank's owned nodes (local 0 … owned−1, in increasing global order).
@@ -177,7 +225,7 @@ void ResultsParts::write_step(const MechanicalState& s, const std::string& group
     disp[3 * i] = p[0] - p0[0];
     disp[3 * i + 1] = p[1] - p0[1];
   }
-  std::vector<double> jloc(3 * nj, 0.0), jforce(3 * nj, 0.0), jmoment(3 * nj, 0.0);
+  std::vector<double> jloc(3 * nj, 0.0), jforce(3 * nj, 0.0), jmoment(3 * nj, 0.0), links;
   for (size_t c = 0; c < nj; ++c) {
     const Constraint& con = *model_.constraints()[c];
     const JointReaction r = con.reaction(gather(s.q, model_.confs_of(con.nodes())), s.t,
@@ -187,6 +235,8 @@ void ResultsParts::write_step(const MechanicalState& s, const std::string& group
       jforce[3 * c + k] = r.force[k];
       jmoment[3 * c + k] = r.moment[k];
     }
+    if (layout_.link_row[static_cast<size_t>(sub_.global_constraint(static_cast<int>(c)))] >= 0)
+      append_link(con, r.location, s, links);
   }
   // Room for this step and the metadata HDF5 still holds, with a margin (twice the step, 64 KiB for
   // the close), agreed on before the collective writes.
@@ -212,6 +262,25 @@ void ResultsParts::write_step(const MechanicalState& s, const std::string& group
   put("node_axis3", node_, 3, axis3.data());
   put("node_quaternion", node_, 4, quat.data());
   put("node_displacement", node_, 3, disp.data());
+  if (!layout_.blocks.empty())
+    put("node_elastic_displacement", node_, 3, elastic_displacements(sub_, layout_, pos, disp).data());
+  if (!layout_.all_bodies() && !layout_.bodies.empty()) {
+    // The bodies grid's own datasets: the owned body nodes' rows of the node datasets.
+    auto rows_of_bodies = [&](const std::vector<double>& all, size_t cols) {
+      std::vector<double> out;
+      for (size_t i = 0; i < nn; ++i)
+        if (layout_.body_row[static_cast<size_t>(sub_.global_node(static_cast<int>(i)))] >= 0)
+          out.insert(out.end(), all.begin() + static_cast<long>(cols * i), all.begin() + static_cast<long>(cols * (i + 1)));
+      return out;
+    };
+    const std::pair<const char*, std::pair<const std::vector<double>*, int>> body_sets[] = {
+        {"body_position", {&pos, 3}}, {"body_velocity", {&vel, 3}},     {"body_acceleration", {&acc, 3}},
+        {"body_angle", {&ang, 1}},    {"body_axis", {&axis, 3}},        {"body_axis2", {&axis2, 3}},
+        {"body_axis3", {&axis3, 3}},  {"body_quaternion", {&quat, 4}},  {"body_displacement", {&disp, 3}}};
+    for (const auto& [set, data] : body_sets)
+      put(set, body_, data.second, rows_of_bodies(*data.first, static_cast<size_t>(data.second)).data());
+  }
+  if (!layout_.links.empty()) put("link_points", link_, 3, links.data());
   // Element results (a beam's section forces and strains, a shell's resultants and stresses),
   // constant on an element: cell data, one dataset per field.
   for (size_t k = 0; k < grids_.size(); ++k) {

@@ -11,6 +11,7 @@
 #include "alphaflex/model/model.hpp"
 #include "alphaflex/partition/subdomain.hpp"
 #include "hdf5_rows.hpp"
+#include "results_layout.hpp"
 #include "results_mesh.hpp"
 
 namespace alphaflex::io_detail {
@@ -26,6 +27,8 @@ class ResultsParts {
   ResultsParts& operator=(const ResultsParts&) = delete;
 
   bool is_open() const { return part_ >= 0; }
+  /// Bodies, links and flexible blocks of the model (results_layout.hpp), for the index.
+  const NodeLayout& layout() const { return layout_; }
   /// Opens part k under its temporary name and writes the topology into it. Collective.
   void open(long long k);
   /// This rank's rows of the state `s` (local) as group `group` of the open part, at time s.t.
@@ -49,6 +52,9 @@ class ResultsParts {
 
  private:
   void write_topology(H5Calls& h5, hid_t file) const;
+  /// The 3 points of joint `con`'s link (location `at`) at state s, appended to `out`.
+  void append_link(const Constraint& con, const Eigen::Vector3d& at, const MechanicalState& s,
+                   std::vector<double>& out) const;
   std::string part_path(long long k) const { return parts_dir_ + "/" + part_file(k); }
 
   const Subdomain& sub_;
@@ -63,6 +69,8 @@ class ResultsParts {
   unsigned long long step_bytes_ = 0;
   // This rank's rows: owned nodes, its joints, and per grid its elements and connectivity entries.
   Rows node_, joint_;
+  NodeLayout layout_;
+  Rows body_, link_;  ///< owned body nodes (when not every node is a body); 3 points per drawn link
   StateRows state_;
   std::vector<Rows> cells_, connectivity_;
   std::vector<std::vector<int>> local_elements_;  ///< per grid: local element indices, in row order

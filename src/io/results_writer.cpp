@@ -66,7 +66,7 @@ ResultsWriter::ResultsWriter(const Subdomain& sub, const std::string& outdir, co
   if (hdf5_) {
     parts_file_ = std::make_unique<io_detail::ResultsParts>(sub, *grids_, parts_dir_, parts_name, h5_path_);
     xdmf_ = std::make_unique<io_detail::XdmfIndex>(xdmf_path_, parts_name, global.nodes().size(),
-                                                   global.constraints().size(), *grids_);
+                                                   global.constraints().size(), *grids_, parts_file_->layout());
   }
   if (resume) {
     resume_from(*resume);

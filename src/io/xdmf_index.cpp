@@ -11,8 +11,9 @@
 namespace alphaflex::io_detail {
 
 XdmfIndex::XdmfIndex(std::string path, std::string parts_name, size_t nodes, size_t joints,
-                     const std::vector<ElementGrid>& grids)
-    : path_(std::move(path)), parts_name_(std::move(parts_name)), nodes_(nodes), joints_(joints), grids_(grids) {}
+                     const std::vector<ElementGrid>& grids, const NodeLayout& layout)
+    : path_(std::move(path)), parts_name_(std::move(parts_name)), nodes_(nodes), joints_(joints), grids_(grids),
+      layout_(layout) {}
 
 namespace {
 
@@ -55,7 +56,10 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
       x << "    </Geometry>\n";
       for (const auto& [aname, set] : attrs) {
         const std::string name = set;
-        const bool scalar = name == "node_angle", quaternion = name == "node_quaternion";
+        auto ends = [&](const std::string& tail) {
+          return name.size() >= tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+        };
+        const bool scalar = ends("_angle"), quaternion = ends("_quaternion");
         x << "    <Attribute Name=\"" << aname << "\" AttributeType=\""
           << (scalar ? "Scalar" : quaternion ? "Matrix" : "Vector") << "\" Center=\"Node\">\n";
         item(s, set, n, scalar ? 1 : quaternion ? 4 : 3);
@@ -65,10 +69,32 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
     }
     x << "  </Grid>\n";
   };
-  grid("bodies", nn, "nodes", "node_position",
-       {{"displacement", "node_displacement"}, {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"},
-        {"angle", "node_angle"}, {"axis", "node_axis"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"},
-        {"quaternion", "node_quaternion"}});
+  // Bodies only (results_layout.hpp): the node datasets when every node is a body, else the body
+  // datasets; no grid when the model has no body.
+  if (layout_.all_bodies())
+    grid("bodies", nn, "nodes", "node_position",
+         {{"displacement", "node_displacement"}, {"velocity", "node_velocity"}, {"acceleration", "node_acceleration"},
+          {"angle", "node_angle"}, {"axis", "node_axis"}, {"axis2", "node_axis2"}, {"axis3", "node_axis3"},
+          {"quaternion", "node_quaternion"}});
+  else if (!layout_.bodies.empty())
+    grid("bodies", layout_.bodies.size(), "bodies", "body_position",
+         {{"displacement", "body_displacement"}, {"velocity", "body_velocity"}, {"acceleration", "body_acceleration"},
+          {"angle", "body_angle"}, {"axis", "body_axis"}, {"axis2", "body_axis2"}, {"axis3", "body_axis3"},
+          {"quaternion", "body_quaternion"}});
+  if (!layout_.links.empty()) {
+    // The links of the bodies: a polyline body 1 → joint → body 2 per joint (link_points).
+    const size_t nl = layout_.links.size();
+    x << "  <Grid Name=\"links\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < steps.size(); ++s) {
+      x << "   <Grid Name=\"links\" GridType=\"Uniform\">\n    <Time Value=\"" << steps[s].time << "\"/>\n"
+        << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << nl << "\" NodesPerElement=\"3\">\n"
+        << "      <DataItem Dimensions=\"" << nl << " 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << in_part(s)
+        << ":/topology/links</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
+      item(s, "link_points", 3 * nl, 3);
+      x << "    </Geometry>\n   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  }
   // An element grid per output step: its topology, the nodes' positions and motion as point data,
   // the elements' results as cell data. Line segments (beams) carry the node axes 2 and 3 (the
   // section axes), faces (shells) the accelerations.
@@ -77,10 +103,13 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
     const size_t nc = g.elements.size();
     const std::string name = g.grid();
     using Pairs = std::vector<std::pair<const char*, const char*>>;
-    const Pairs vectors = g.lines ? Pairs{{"displacement", "node_displacement"}, {"velocity", "node_velocity"},
-                                          {"axis2", "node_axis2"}, {"axis3", "node_axis3"}}
-                                  : Pairs{{"displacement", "node_displacement"}, {"velocity", "node_velocity"},
-                                          {"acceleration", "node_acceleration"}};
+    Pairs vectors = g.lines ? Pairs{{"displacement", "node_displacement"}, {"velocity", "node_velocity"},
+                                    {"axis2", "node_axis2"}, {"axis3", "node_axis3"}}
+                            : Pairs{{"displacement", "node_displacement"}, {"velocity", "node_velocity"},
+                                    {"acceleration", "node_acceleration"}};
+    // The displacement without the block's best-fit rigid motion (results_layout.hpp): Warp By
+    // Vector on it magnifies the deformation of a moving part.
+    if (!layout_.blocks.empty()) vectors.emplace_back("elastic_displacement", "node_elastic_displacement");
     x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (size_t s = 0; s < steps.size(); ++s) {
       x << "   <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n    <Time Value=\"" << steps[s].time << "\"/>\n";

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
+#include <utility>
 
 namespace alphaflex::study {
 
@@ -21,6 +24,74 @@ double loglog_slope(const std::vector<double>& h, const std::vector<double>& err
   const double den = n * sxx - sx * sx;
   if (n < 2 || !(std::fabs(den) > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   return (n * sxy - sx * sy) / den;
+}
+
+SlopeFit fit_convergence(const std::vector<double>& h, const std::vector<double>& err, double roundoff) {
+  std::vector<std::pair<double, double>> pts;  // (h, error), finite positive errors only
+  for (size_t i = 0; i < h.size() && i < err.size(); ++i)
+    if (err[i] > 0.0 && std::isfinite(err[i]) && h[i] > 0.0) pts.emplace_back(h[i], err[i]);
+  std::sort(pts.begin(), pts.end());
+  SlopeFit fit;
+  if (pts.empty()) return fit;
+  double largest = 0.0;
+  for (const auto& p : pts) largest = std::max(largest, p.second);
+  if (largest <= roundoff) {
+    fit.roundoff = true;
+    fit.at_floor = static_cast<int>(pts.size());
+    fit.floor = largest;
+    fit.h_floor = pts.back().first;
+    return fit;
+  }
+  // From the smallest h up: a point is at the floor while its error is at round-off or while going
+  // to the next larger h does not raise the error by (h ratio)^0.5 (a local order below 1/2).
+  size_t first = 0;
+  while (first + 1 < pts.size()) {
+    const auto& [h0, e0] = pts[first];
+    const auto& [h1, e1] = pts[first + 1];
+    const bool flat = std::log(e1 / e0) < 0.5 * std::log(h1 / h0);
+    if (!(e0 <= roundoff || flat)) break;
+    fit.floor = std::max(fit.floor, e0);
+    fit.h_floor = h0;
+    ++first;
+  }
+  if (first + 1 == pts.size()) {  // no step up anywhere: the last point is as flat as the others
+    fit.floor = std::max(fit.floor, pts.back().second);
+    fit.h_floor = pts.back().first;
+    first = pts.size();
+  }
+  fit.at_floor = static_cast<int>(first);
+  std::vector<double> hs, es;
+  for (size_t i = first; i < pts.size(); ++i) {
+    hs.push_back(pts[i].first);
+    es.push_back(pts[i].second);
+  }
+  fit.points = static_cast<int>(hs.size());
+  if (hs.size() >= 2) fit.slope = loglog_slope(hs, es);
+  // What is left must still fall with h: a slope under 1/2 (scattered or rising errors) is no order.
+  if (fit.slope < 0.5) {
+    fit.rising = fit.slope;
+    fit.slope = std::numeric_limits<double>::quiet_NaN();
+  }
+  return fit;
+}
+
+std::string SlopeFit::describe() const {
+  auto g = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2g", x);
+    return std::string(buf);
+  };
+  char slope_text[32];
+  std::snprintf(slope_text, sizeof slope_text, "%.2f", slope);
+  if (roundoff) return "none: errors at round-off (<= " + g(floor) + ")";
+  if (!std::isnan(rising))
+    return "none: errors do not decrease as h decreases (least-squares slope " + g(rising) + ")" +
+           (at_floor ? "; for h <= " + g(h_floor) + " they stop decreasing (at " + g(floor) + ")" : std::string());
+  if (at_floor == 0) return std::isnan(slope) ? "none: fewer than two errors" : slope_text;
+  const std::string level = "for h <= " + g(h_floor) + " the errors stop decreasing (at " + g(floor) +
+                            "): round-off, the reference's accuracy or an error that h does not reduce";
+  if (std::isnan(slope)) return "none: " + level;
+  return std::string(slope_text) + " over the " + std::to_string(points) + " larger h; " + level;
 }
 
 double total_variation(const std::vector<double>& x) {

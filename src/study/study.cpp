@@ -564,21 +564,39 @@ class Study {
             hs.push_back(r.h);
             es.push_back(r.errors.at(e));
           }
-        if (hs.size() >= 2) res_.slopes[st.label][e] = loglog_slope(hs, es);
+        if (hs.size() < 2) continue;
+        // Errors at round-off or at the reference's accuracy are left out of the fit (measures.hpp):
+        // a slope through them is noise, and the log, the CSV and the charts say so instead.
+        const SlopeFit fit = fit_convergence(hs, es, spec_.relative_errors ? kRoundoff : 0.0);
+        res_.slopes[st.label][e] = fit.slope;
+        res_.slope_fits[st.label][e] = fit;
       }
     if (!opt_.verbose || rank_ != 0 || res_.slopes.empty()) return;
-    std::cout << "observed orders (least-squares slope of log error vs log h over all h; theory: 2 for "
-                 "generalized-alpha with rho_inf < 1, eq. 38):\n";
+    std::cout << "observed orders (least-squares slope of log error vs log h over the h whose errors are above "
+                 "round-off and the reference's accuracy; theory: 2 for generalized-alpha with rho_inf < 1, eq. 38):\n";
     for (const auto& st : spec_.settings) {
-      if (!res_.slopes.count(st.label)) continue;
+      if (!res_.slope_fits.count(st.label)) continue;
       std::ostringstream os;
       os << "  " << st.label << ":";
-      for (const auto& e : res_.error_names)
-        if (res_.slopes[st.label].count(e)) os << " " << e << " " << std::fixed << std::setprecision(2) << res_.slopes[st.label][e];
+      const auto& fits = res_.slope_fits[st.label];
+      for (const auto& e : res_.error_names) {
+        const auto it = fits.find(e);
+        if (it == fits.end()) continue;
+        // A plain slope on the label's line; a slope with a floor, or none, on a line of its own.
+        if (it->second.at_floor == 0 && !std::isnan(it->second.slope)) os << " " << e << " " << it->second.describe();
+      }
+      for (const auto& e : res_.error_names) {
+        const auto it = fits.find(e);
+        if (it != fits.end() && (it->second.at_floor > 0 || std::isnan(it->second.slope)))
+          os << "\n    " << e << ": " << it->second.describe();
+      }
       std::cout << os.str() << "\n";
     }
     std::cout.flush();
   }
+
+  /// Relative errors at or below this are round-off (measures.hpp, fit_convergence): ~4500 ε.
+  static constexpr double kRoundoff = 1e-12;
 
   void oscillation() {
     Scene base = scene_for(spec_.settings.front(), spec_.h.front());
@@ -875,6 +893,7 @@ class Study {
       try {
         write_csv();
         if (!histories_.empty()) write_history();
+        if (!res_.slope_fits.empty()) write_slopes();
         if (!res_.energy.empty()) write_energy();
       } catch (const std::exception& e) {
         ok = 0;
@@ -928,6 +947,30 @@ class Study {
       for (char& c : fail)
         if (c == ',' || c == '\n' || c == '"') c = ';';
       f << "," << fail << "\n";
+    }
+    res_.files.push_back(path);
+  }
+
+  /// NAME_slopes.csv: the fitted orders of a convergence study with what they mean (the log's
+  /// lines; scripts/study_plots.py puts them on the chart).
+  void write_slopes() {
+    const std::string path = csv_path("_slopes.csv");
+    std::ofstream f(path);
+    if (!f) throw OutputError(path + ": cannot write");
+    f << "label,error,slope,points,at_floor,roundoff,floor,h_floor,meaning\n";
+    for (const auto& st : spec_.settings) {
+      if (!res_.slope_fits.count(st.label)) continue;
+      for (const auto& e : res_.error_names) {
+        const auto it = res_.slope_fits[st.label].find(e);
+        if (it == res_.slope_fits[st.label].end()) continue;
+        const SlopeFit& k = it->second;
+        std::string meaning = k.describe();
+        for (char& c : meaning)
+          if (c == ',') c = ';';
+        f << st.label << "," << e << "," << field(k.slope) << "," << k.points << "," << k.at_floor << ","
+          << (k.roundoff ? "yes" : "no") << "," << field(k.at_floor ? k.floor : std::nan("")) << ","
+          << field(k.at_floor ? k.h_floor : std::nan("")) << "," << meaning << "\n";
+      }
     }
     res_.files.push_back(path);
   }

@@ -62,7 +62,7 @@ def csv_rows(path):
 
 def xdmf_times(path):
     root = ET.parse(path).getroot()
-    grid = root.find("Domain/Grid[@Name='bodies']")
+    grid = root.find("Domain/Grid[@CollectionType='Temporal']")  # the first grid (bodies, beams, ...)
     return [float(g.find("Time").get("Value")) for g in grid.findall("Grid")]
 
 

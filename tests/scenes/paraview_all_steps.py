@@ -1,5 +1,6 @@
 """Opens an XDMF index with ParaView's reader (under pvpython) and reads every time step it lists:
-each must give the bodies block with its points (in the deformed configuration of that step).
+each must give the first drawn block (bodies, beams or shells) with its points (in the deformed
+configuration of that step).
 Prints steps=N. usage: pvpython paraview_all_steps.py ABSOLUTE/PATH/NAME.xdmf"""
 import sys
 
@@ -14,8 +15,9 @@ for t in times:
     reader.UpdatePipeline(t)
     data = sm.Fetch(reader)
     blocks = {data.GetMetaData(i).Get(data.NAME()): data.GetBlock(i) for i in range(data.GetNumberOfBlocks())}
-    assert "bodies" in blocks, blocks.keys()
-    n = blocks["bodies"].GetNumberOfPoints()
+    drawn = [k for k in ("bodies", "beams", "shells") if k in blocks]
+    assert drawn, blocks.keys()
+    n = blocks[drawn[0]].GetNumberOfPoints()
     assert n > 0 and (npoints is None or n == npoints), (t, n)
     npoints = n
 print(f"steps={len(times)} points={npoints}")

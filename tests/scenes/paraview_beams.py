@@ -20,7 +20,7 @@ assert len(times) == expected, f"{len(times)} time steps, expected {expected}"
 reader.UpdatePipeline(times[-1])
 data = sm.Fetch(reader)
 blocks = {data.GetMetaData(i).Get(data.NAME()): data.GetBlock(i) for i in range(data.GetNumberOfBlocks())}
-assert {"bodies", "beams"} <= set(blocks), blocks.keys()
+assert "beams" in blocks, blocks.keys()  # and "bodies" only if the model has nodes outside its mesh
 beams = blocks["beams"]
 assert beams.GetNumberOfCells() == nelem, beams.GetNumberOfCells()
 assert all(beams.GetCellType(c) in (3, 4) for c in range(nelem)), "beam cells must be lines/polylines"

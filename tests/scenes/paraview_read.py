@@ -1,6 +1,6 @@
 """Opens an alphaflex XDMF file with ParaView's own reader (run under pvpython) and checks what a
-user sees: the time steps, the two blocks (bodies, joints), their point arrays, and that the
-values equal those in the HDF5 file.
+user sees: the time steps, the three blocks (bodies, links, joints), their point arrays, and that
+the values equal those in the HDF5 file; each link is the polyline body → joint → body.
 
 usage: pvpython paraview_read.py ABSOLUTE/PATH/NAME.xdmf EXPECTED_STEPS
 """
@@ -22,7 +22,7 @@ assert abs(times[0]) < 1e-15 and times == sorted(times), times
 reader.UpdatePipeline(times[-1])
 data = sm.Fetch(reader)
 blocks = {data.GetMetaData(i).Get(data.NAME()): data.GetBlock(i) for i in range(data.GetNumberOfBlocks())}
-assert set(blocks) == {"bodies", "joints"}, blocks.keys()
+assert set(blocks) == {"bodies", "links", "joints"}, blocks.keys()
 arrays = {n: [b.GetPointData().GetArrayName(k) for k in range(b.GetPointData().GetNumberOfArrays())]
           for n, b in blocks.items()}
 for want in ("velocity", "acceleration", "angle", "axis"):
@@ -39,4 +39,14 @@ with h5py.File(path[:-5] + ".h5", "r") as f:
     force = vtk_to_numpy(blocks["joints"].GetPointData().GetArray("force"))
     assert np.allclose(force, f[last]["joint_force"][()], rtol=0, atol=1e-12), "joint forces differ"
     assert pts.dtype == np.float64, pts.dtype
-print(f"ParaView read {path}: {len(times)} steps, bodies {arrays['bodies']}, joints {arrays['joints']}")
+    # Links: 3 points per joint that holds a body, the middle one the joint's location, the ends
+    # body centres or the joint itself (ground side).
+    links = blocks["links"]
+    lp = vtk_to_numpy(links.GetPoints().GetData())
+    loc = f[last]["joint_location"][()]
+    assert links.GetNumberOfCells() == len(loc) and lp.shape == (3 * len(loc), 3), (links.GetNumberOfCells(), lp.shape)
+    for c in range(len(loc)):
+        assert np.array_equal(lp[3 * c + 1], loc[c]), (c, lp[3 * c + 1], loc[c])
+        for end in (lp[3 * c], lp[3 * c + 2]):
+            assert np.array_equal(end, loc[c]) or any(np.array_equal(end, p) for p in pts), (c, end)
+print(f"ParaView read {path}: {len(times)} steps, bodies {arrays['bodies']}, links {links.GetNumberOfCells()}, joints {arrays['joints']}")

@@ -44,7 +44,7 @@ def shells_at(t):
     reader.UpdatePipeline(t)
     data = sm.Fetch(reader)
     blocks = {data.GetMetaData(i).Get(data.NAME()): data.GetBlock(i) for i in range(data.GetNumberOfBlocks())}
-    assert {"bodies", "shells"} <= set(blocks), blocks.keys()
+    assert "shells" in blocks, blocks.keys()  # and "bodies" only if the model has nodes outside its mesh
     return blocks["shells"]
 
 

@@ -49,6 +49,46 @@ TEST(StudyMeasures, SlopeOfAPowerLawIsItsExponent) {
   EXPECT_TRUE(std::isnan(loglog_slope({1e-3}, {1e-6})));
 }
 
+TEST(StudyMeasures, SlopeThroughRoundoffOrAFloorIsNotReportedAsAnOrder) {
+  const std::vector<double> h{8e-3, 4e-3, 2e-3, 1e-3, 5e-4};
+  // Order 2 (6.4e-5 … 1.1e-6 for h = 8 … 1 ms) that stops at 1e-6 at the smallest h (a reference of
+  // that accuracy; joint forces levelling off at 1e-6): 1.1e-6 → 1.0e-6 is a local order of 0.14.
+  const std::vector<double> floored{6.4e-5, 1.6e-5, 4e-6, 1.1e-6, 1.0e-6};
+  // A driven crank's angle: exact to its last bits, the errors scattered at 1e-17.
+  const std::vector<double> roundoff{3e-17, 8e-17, 2e-17, 5e-17, 4e-17};
+  std::vector<double> clean;
+  for (double x : h) {
+    const double hm = x * 1e3;
+    clean.push_back(3e-6 * hm * hm);
+  }
+  const SlopeFit f = fit_convergence(h, floored);
+  EXPECT_EQ(f.at_floor, 1);  // 1.0e-6 vs 1.1e-6: local order 0.14 < 0.5
+  EXPECT_EQ(f.points, 4);
+  EXPECT_NEAR(f.slope, loglog_slope({8e-3, 4e-3, 2e-3, 1e-3}, {6.4e-5, 1.6e-5, 4e-6, 1.1e-6}), 1e-13);  // summed in another order
+  EXPECT_DOUBLE_EQ(f.floor, 1.0e-6);
+  EXPECT_DOUBLE_EQ(f.h_floor, 5e-4);
+  EXPECT_NE(f.describe().find("for h <= 0.0005 the errors stop decreasing (at 1e-06)"), std::string::npos) << f.describe();
+
+  const SlopeFit r = fit_convergence(h, roundoff);
+  EXPECT_TRUE(r.roundoff);
+  EXPECT_TRUE(std::isnan(r.slope));
+  EXPECT_EQ(r.describe(), "none: errors at round-off (<= 8e-17)");
+  // Without a round-off threshold (absolute errors): the three smallest h are flat, and the two
+  // left (8e-17 at 4 ms, 3e-17 at 8 ms) do not decrease with h: no order either.
+  const SlopeFit a = fit_convergence(h, roundoff, 0.0);
+  EXPECT_TRUE(std::isnan(a.slope));
+  EXPECT_NE(a.describe().find("do not decrease"), std::string::npos) << a.describe();
+
+  const SlopeFit c = fit_convergence(h, clean);
+  EXPECT_EQ(c.at_floor, 0);
+  EXPECT_NEAR(c.slope, 2.0, 1e-12);
+  EXPECT_EQ(c.describe(), "2.00");
+  // An error that grows again at the smallest h (round-off amplified by 1/h², eq. 34) is at the floor.
+  const SlopeFit g = fit_convergence(h, {6.4e-5, 1.6e-5, 4e-6, 1e-6, 4e-6});
+  EXPECT_EQ(g.at_floor, 1);
+  EXPECT_NEAR(g.slope, 2.0, 1e-12);
+}
+
 TEST(StudyMeasures, TotalVariationAndSecondDifferenceSeparateOscillationFromTrend) {
   // A ramp of 100 steps by 1 has TV 100 and no second difference; alternating ∓1 on top makes the
   // steps 3 and 1 in turn (TV 200) and |Δ²| = 4.

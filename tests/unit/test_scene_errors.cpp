@@ -173,6 +173,39 @@ TEST(SceneErrors, RangeAndChoiceMessagesComeFromTheSchema) {
             "scene.yaml:1: solver.scheme: unknown scheme 'rk4' (expected one of generalized-alpha, hht, newmark)");
 }
 
+// output.checkpoint_every is a key of type Interval: a whole number of steps (a name of
+// `parameters` too) or a wall time with its unit, read by the Section from the schema.
+TEST(SceneSchemas, CheckpointEveryIsStepsOrAWallTime) {
+  const auto every = [](const std::string& value) {
+    const Scene sc = read_scene_text("parameters: {n: 3}\noutput: {checkpoint_every: " + value + "}\n" + kPendulum, "scene.yaml");
+    return std::make_pair(sc.settings.checkpoint_steps, sc.settings.checkpoint_wall);
+  };
+  EXPECT_EQ(every("5"), std::make_pair(5L, 0.0));
+  EXPECT_EQ(every("n"), std::make_pair(3L, 0.0));
+  EXPECT_EQ(every("\"10 min\""), std::make_pair(0L, 600.0));
+  EXPECT_EQ(every("\"2 h\""), std::make_pair(0L, 7200.0));
+  EXPECT_EQ(error_of("output: {checkpoint_every: 0}\n" + kPendulum),
+            "scene.yaml:1: output.checkpoint_every: expected an integer from 1 to 1000000000");
+  EXPECT_EQ(error_of("output: {checkpoint_every: [1]}\n" + kPendulum),
+            "scene.yaml:1: output.checkpoint_every: expected a number of steps (an integer >= 1) or a wall time with its "
+            "unit, e.g. \"600 s\", \"10 min\", \"2 h\"");
+}
+
+// Beams and shells are registered block types: the scene's schemas hold one per dimension and kind
+// of cell, and the lists of blocks are read through them.
+TEST(SceneSchemas, BeamAndShellBlocksAreRegisteredTypes) {
+  std::set<std::string> names;
+  for (const auto* s : input::scene_schemas()) names.insert(s->name);
+  for (const char* block : {"beams.2d", "beams.3d", "shells", "beams.section.material", "shells.section"})
+    EXPECT_TRUE(names.count(block)) << block;
+  const std::string meshed = "dimension: 3\nmesh: {file: " + testing::source_path("meshes/cantilever.geo") + "}\n"
+                             "beams: [{name: b, group: beam, orientation: [0, 1, 0], section: {EA: 1, GA2: 1, GA3: 1,"
+                             " GJ: 1, EI2: 1, EI3: 1, rhoA: 1, rhoI2: 1, rhoI3: 1}}, {name: b, group: beam}]\n";
+  EXPECT_EQ(error_of(meshed), "scene.yaml:3: beams[b].name: a beam named 'b' exists already");
+  EXPECT_EQ(error_of("dimension: 3\nmesh: {file: " + testing::source_path("meshes/cantilever.geo") + "}\nbeams: [1]\n"),
+            "scene.yaml:3: beams[0]: expected a map with name, group, section, orientation");
+}
+
 // Every key a reader reads is in its schema with the type it is read with: the docs tables are
 // what the reader does (a key read but not declared is a std::logic_error, not an input error).
 TEST(SceneSchemas, EverySchemaHasDocumentedKeysWithUnits) {

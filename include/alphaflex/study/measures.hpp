@@ -4,6 +4,7 @@
 // 2007, eq. 18 and 19).
 #include <complex>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "alphaflex/integrators/alpha_parameters.hpp"
@@ -13,6 +14,32 @@ namespace alphaflex::study {
 /// Least-squares slope of log(err) against log(h) over the pairs with a finite positive error
 /// (NaN if fewer than two): the observed order of convergence.
 double loglog_slope(const std::vector<double>& h, const std::vector<double>& err);
+
+/// A convergence slope and whether it means anything. Below some error the error of a run no
+/// longer measures its truncation error: round-off (relative errors of ~1e-16 to 1e-12: a driven
+/// crank's angle is exact up to its last bits) or the reference's own accuracy (an independent
+/// solution at rtol 1e-13, a reference run at a finer h, joint forces levelling off at 1e-6). A
+/// slope fitted through such points is noise ("slope 0.65" of errors at 1e-17 says nothing about
+/// an order 2). fit_convergence() finds them from the small-h end of the line: an error at or below
+/// `roundoff`, or one that is not smaller than the next larger h's by at least (ratio of h)^0.5 —
+/// a local order under 0.5, where the scheme's order is 1 or 2 — is at the floor; the slope is
+/// fitted over the points above it, or not at all when fewer than two remain or when their slope is
+/// itself under 1/2.
+struct SlopeFit {
+  double slope = std::numeric_limits<double>::quiet_NaN();  ///< NaN: no order to measure
+  int points = 0;          ///< errors the slope is fitted over (those above the floor)
+  int at_floor = 0;        ///< errors left out: at round-off or levelled off
+  bool roundoff = false;   ///< every error is at or below `roundoff`
+  double floor = 0.0;      ///< the largest error left out (the level the errors sit at)
+  double h_floor = 0.0;    ///< the largest h whose error is left out
+  /// The slope of the points above the floor when it is under 1/2 (then `slope` is NaN): errors
+  /// that scatter or grow as h decreases.
+  double rising = std::numeric_limits<double>::quiet_NaN();
+  /// The sentence for the log, the CSV and the charts: "2.01", "2.01 over the 4 larger h; for
+  /// h <= 0.0005 the errors stop decreasing (at 1e-06): ...", "none: errors at round-off (<= 8e-17)".
+  std::string describe() const;
+};
+SlopeFit fit_convergence(const std::vector<double>& h, const std::vector<double>& err, double roundoff = 1e-12);
 
 /// Σ |x_{n+1} − x_n|: total variation of a sampled history (divide by the time span for a rate).
 double total_variation(const std::vector<double>& x);

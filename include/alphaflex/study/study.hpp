@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "alphaflex/integrators/alpha_parameters.hpp"
+#include "alphaflex/study/measures.hpp"
 #include "alphaflex/study/study_spec.hpp"
 
 namespace alphaflex::study {
@@ -66,6 +67,9 @@ struct StudyResult {
   std::vector<EnergyRow> energy;
   /// Observed orders: setting label → error name → least-squares slope of log(error) vs log(h).
   std::map<std::string, std::map<std::string, double>> slopes;
+  /// The same fits with what they mean (measures.hpp: errors at round-off or at the reference's
+  /// accuracy are left out; the slope is NaN when fewer than two remain).
+  std::map<std::string, std::map<std::string, SlopeFit>> slope_fits;
   std::vector<std::string> files;   ///< files written (rank 0)
   std::vector<std::string> warnings;
 };

@@ -1,0 +1,35 @@
+// `joint_reaction`: a component of the force or moment a joint exerts on its body1 — planar: world
+// frame (fx, fy, mz); spatial: joint frame (fx, fy, fz, mx, my, mz) (N, N·m).
+#include "common.hpp"
+
+namespace alphaflex::scene_detail {
+namespace {
+
+void read_joint_reaction(const Item& it, Sensor& sn, bool planar) {
+  sn.kind = Sensor::Kind::JointReaction;
+  sn.constraint = sensor_joint(it);
+  sn.component = it.keys.choice("component");
+  if (planar && sn.component == 2) sn.component = 5;  // mz: the sixth component of a reaction
+}
+
+Schema reaction_schema(const char* dimension, const char* doc, std::vector<std::string> components) {
+  return type_schema(std::string("sensors.") + dimension + ".joint_reaction", doc, {
+      {"joint", KeyType::Text, "–", kRequired, "a joint of `joints`"},
+      {"component", KeyType::Choice, "–", kRequired, *dimension == '2' ? "force or moment component" : "component", {}, "", "",
+       std::move(components)}});
+}
+
+}  // namespace
+
+void register_joint_reaction_2d(SceneTypes& t) {
+  t.sensors.add("joint_reaction", reaction_schema("2d", "`joint_reaction`: what the joint exerts on its body1, world frame (N, N·m)", {"fx", "fy", "mz"}),
+                [](const Item& it, Sensor& sn) { read_joint_reaction(it, sn, true); });
+}
+
+void register_joint_reaction_3d(SceneTypes& t) {
+  t.sensors.add("joint_reaction", reaction_schema("3d", "`joint_reaction`: force / moment on body1 in the joint frame (N, N·m)",
+                                                  {"fx", "fy", "fz", "mx", "my", "mz"}),
+                [](const Item& it, Sensor& sn) { read_joint_reaction(it, sn, false); });
+}
+
+}  // namespace alphaflex::scene_detail
