@@ -11,7 +11,9 @@
 // 5 stopped by a signal after writing a checkpoint, 6 results or checkpoint not written.
 #include <slepcsys.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -112,6 +114,10 @@ CommandLine parse(int argc, char** argv) {
     } else if (a == "--no-plots") {
       cl.study_options = true;
       cl.plots = false;
+    } else if (a.rfind("--", 0) == 0) {
+      // Every long option is one of ours (PETSc's take one dash): a misspelt one (--ouptut) would
+      // otherwise be passed to PETSc and ignored, and the results written elsewhere.
+      if (cl.error.empty()) cl.error = "unknown option '" + a + "'";
     } else if (!a.empty() && a[0] == '-') {
       // A PETSc option, with its value if the next word is not an option itself (nor a scene).
       cl.petsc_argv.push_back(argv[i]);
@@ -123,12 +129,43 @@ CommandLine parse(int argc, char** argv) {
       cl.command = a;
     } else if (cl.scene.empty()) {
       cl.scene = a;
-    } else {
+    } else if (cl.error.empty()) {
       cl.error = "unexpected argument '" + a + "'";
     }
   }
   cl.petsc_argv.push_back(nullptr);
   return cl;
+}
+
+/// The values of options the run reads as numbers: alphaflex's own and MUMPS' integer (ICNTL) and
+/// real (CNTL) controls. PETSc would stop on a bad one with its error trace deep in the solver's
+/// set-up (exit 63 or 3); here it is a bad command line (exit 2) naming the option. Empty if all
+/// are numbers.
+std::string check_number_options(const std::vector<char*>& argv) {
+  auto number = [](const std::string& v, bool integer) {
+    if (v.empty()) return false;
+    char* end = nullptr;
+    errno = 0;
+    if (integer) (void)std::strtol(v.c_str(), &end, 10);
+    else {
+      const double x = std::strtod(v.c_str(), &end);
+      if (!std::isfinite(x)) return false;
+    }
+    return errno == 0 && end && *end == '\0';
+  };
+  for (size_t i = 1; i + 1 < argv.size(); ++i) {
+    if (!argv[i]) break;
+    const std::string o = argv[i];
+    const bool integer = o == "-af_dense_lu" || o.rfind("-mat_mumps_icntl_", 0) == 0;
+    const bool real = o == "-af_exit_timeout" || o.rfind("-mat_mumps_cntl_", 0) == 0;
+    if (!integer && !real) continue;
+    const char* value = argv[i + 1];
+    if (!value || value[0] == '-' && !number(value, integer))
+      return o + " needs " + (integer ? "an integer" : "a number");
+    if (!number(value, integer))
+      return o + ": expected " + (integer ? "an integer" : "a number") + ", got '" + value + "'";
+  }
+  return {};
 }
 
 /// What `read` returns (a scene, a study), read on every rank; the ranks agree that it is valid
@@ -271,6 +308,10 @@ void modes_command(const CommandLine& cl, int rank, MPI_Comm exit_comm, double e
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::strcmp(argv[1], "keys") == 0) return keys_command(argc, argv);
+  // From the start: a stop signal during start-up (MPI and PETSc take ~0.7 s) is kept, and the run
+  // stops after its first step with a checkpoint (exit 5) instead of dying with no message. PETSc's
+  // initialization installs handlers of its own: ours are installed again after it.
+  alphaflex::install_stop_signals();
   CommandLine cl = parse(argc, argv);
   if (cl.command == "help") {
     std::cout << kUsage;
@@ -282,6 +323,7 @@ int main(int argc, char** argv) {
   if (cl.error.empty() && cl.command == "study" && !cl.restart.empty()) cl.error = "--restart is an option of `alphaflex run` and `alphaflex modes`";
   if (cl.error.empty() && cl.command != "study" && cl.study_options)
     cl.error = "--study, --study-set and --no-plots are options of `alphaflex study`";
+  if (cl.error.empty()) cl.error = check_number_options(cl.petsc_argv);
   if (!cl.error.empty()) {
     std::cerr << "alphaflex: " << cl.error << "\n\n" << kUsage;
     return 2;

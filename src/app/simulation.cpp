@@ -44,12 +44,41 @@ std::vector<double> sensor_values(const Subdomain& sub, const MechanicalState& s
 
 RunSummary run_body(RunObjects& objects, Scene& scene, const RunOptions& opt, MPI_Comm comm);
 
+/// A failed write of the results or of a checkpoint (issue 24, defect 1: a full disk), on every
+/// rank: the results are left as last committed — consistent in the CSV, NAME.h5 and the index —
+/// and a checkpoint of that state is written if there is room (the failed part's space is given
+/// back first). Throws the OutputError the user sees: the failed write (file, errno) and what was kept.
+[[noreturn]] void keep_committed_results(RunObjects& o, const OutputError& e) {
+  o.writer->abandon();
+  const CommittedState& c = o.committed;
+  std::ostringstream os;
+  os << e.what() << "\n  The results up to t = " << c.state.t << " s (output steps: " << c.position.results.steps
+     << ", sensor rows: " << c.position.results.csv_rows << ") are complete and consistent in " << o.writer->csv_path();
+  if (c.position.results.parts > 0) os << ", " << o.writer->h5_path() << " and " << o.writer->xdmf_path();
+  try {
+    write_checkpoint(*o.sub, c.checkpoint, c.state, c.auxiliary, c.position, c.parameters, c.h, c.keep);
+    os << "; a checkpoint of that state: " << c.checkpoint << ".\n  Once there is room, go on with: alphaflex run "
+       << c.scene_file << " --restart " << c.checkpoint << " -o " << std::filesystem::absolute(c.outdir).string()
+       << " (and the same --set options)";
+  } catch (const OutputError& again) {
+    os << "; no checkpoint of it could be written (" << again.what() << ")";
+  }
+  throw OutputError(os.str());
+}
+
 }  // namespace
 
 RunSummary run_simulation(Scene& scene, const RunOptions& opt, MPI_Comm comm) {
-  return run_with_objects(opt.exit_comm, opt.exit_timeout,
-                          [&](RunObjects& objects) { return run_body(objects, scene, opt, comm); });
+  return run_with_objects(opt.exit_comm, opt.exit_timeout, [&](RunObjects& objects) {
+    try {
+      return run_body(objects, scene, opt, comm);
+    } catch (const OutputError& e) {
+      if (!objects.writer || objects.committed.checkpoint.empty()) throw;
+      keep_committed_results(objects, e);
+    }
+  });
 }
+
 
 namespace {
 
@@ -191,6 +220,13 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
                                   : std::function<void(const MechanicalState&, double)>());
     } catch (const SolverError& e) {
       if (writer) writer->finish();
+      // A body nothing holds (no joint, no stiffness) has no equilibrium: bad input, named (the
+      // factorization alone said "zero pivot").
+      const std::string unheld = load_steps == 0 ? find_unheld_motion(sub, s) : std::string();
+      if (!unheld.empty())
+        throw InputError(scene.file + ": the " + (is_static ? "static analysis" : "initial static equilibrium") +
+                         " has no equilibrium to find: no joint and no stiffness acts on these motions (attach the body "
+                         "by a joint or a spring, or run a dynamic analysis):" + unheld);
       throw SolverError(std::string(is_static ? "static analysis: " : "initial static equilibrium: ") + e.what() +
                         (writer && is_static ? "\n  The converged load steps are written to " + writer->xdmf_path() + "." : ""));
     } catch (const InputError& e) {
@@ -257,6 +293,12 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   ls.outdir = opt.outdir;
   ls.stop_signal = [] { return stop_signal(); };
   ls.signal_name = [](int sig) { return signal_name(sig); };
+  // A write that fails later (a full disk: run_simulation) leaves the results as last committed and
+  // a checkpoint of the state they end at: that state is kept at every commit (a copy of the local
+  // state, once per commit), starting with the one committed so far (t = 0, or the restart's).
+  ls.on_commit = [&](const MechanicalState& st, const Eigen::VectorXd& aux, const RunPosition& pos) {
+    o.committed = {st, aux, pos, checkpoint_path, rs.parameters, h, rs.checkpoint_keep, scene.file, opt.outdir};
+  };
   TimeLoop loop(sub, integrator, *controller, checkpointer, writer.get(), ls);
   if (restarting) loop.restore(ck, h);
   if (const auto* fixed = dynamic_cast<const FixedSteps*>(controller.get())) {

@@ -131,6 +131,54 @@ double constraint_violation(const Model& m, const MechanicalState& s) {
   return viol;
 }
 
+namespace {
+
+/// The motions that neither the joints nor the elements' matrix hold: the null space of [A; Φ_q],
+/// A = M (`stiffness` false: the accelerations of the consistent start are undefined) or K (true:
+/// a static equilibrium is undefined). Per motion, the coordinates it moves (" body 'b' (x), …").
+/// Dense, O(n³): for at most kDenseLimit coordinates (none found above).
+std::vector<std::string> unheld_motions(const Model& m, const MechanicalState& s, bool stiffness) {
+  if (m.num_dofs() > kDenseLimit) return {};
+  std::vector<int> rj, re;
+  const Eigen::MatrixXd A = dense_constraint_jacobian(m, s, rj, re);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m.num_dofs(), m.num_dofs());
+  LocalState ls;
+  LocalResidual lr;
+  for (const auto& e : m.elements()) {
+    const auto idx = m.dofs_of(e->nodes());
+    ls.q = gather(s.q, m.confs_of(e->nodes()));
+    ls.v = gather(s.v, idx);
+    ls.qdd = gather(s.qdd, idx);
+    ls.t = s.t;
+    lr.reset(static_cast<int>(idx.size()), true);
+    e->evaluate(ls, lr, true);
+    const Eigen::MatrixXd& B = stiffness ? lr.K : lr.M;
+    for (size_t i = 0; i < idx.size(); ++i)
+      for (size_t j = 0; j < idx.size(); ++j) M(idx[i], idx[j]) += B(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+  }
+  Eigen::MatrixXd stacked(M.rows() + A.rows(), m.num_dofs());
+  stacked << M, A;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(stacked);
+  lu.setThreshold(1e-12);
+  const Eigen::MatrixXd kernel = lu.dimensionOfKernel() > 0 ? Eigen::MatrixXd(lu.kernel()) : Eigen::MatrixXd();
+  std::vector<std::string> out;
+  for (Eigen::Index k = 0; k < kernel.cols(); ++k) {
+    std::ostringstream os;
+    const Eigen::VectorXd v = kernel.col(k) / kernel.col(k).cwiseAbs().maxCoeff();
+    bool first = true;
+    for (const Node& n : m.nodes())
+      for (int d = 0; d < n.ndof; ++d)
+        if (std::fabs(v[n.first_dof + d]) > 1e-8) {
+          os << (first ? " " : ", ") << "body '" << n.name << "' (" << coordinate_name(n.kind, d) << ")";
+          first = false;
+        }
+    out.push_back(os.str());
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
   std::ostringstream os;
   const auto red = find_redundant_constraints(m, s);
@@ -157,41 +205,10 @@ std::string diagnose_singular_system(const Model& m, const MechanicalState& s) {
     os << "(the search for coordinates that nothing acts on is skipped above " << kDenseLimit << " coordinates)";
     return os.str();
   }
-  std::vector<int> rj, re;
-  const Eigen::MatrixXd A = dense_constraint_jacobian(m, s, rj, re);
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m.num_dofs(), m.num_dofs());
-  LocalState ls;
-  LocalResidual lr;
-  for (const auto& e : m.elements()) {
-    const auto idx = m.dofs_of(e->nodes());
-    ls.q = gather(s.q, m.confs_of(e->nodes()));
-    ls.v = gather(s.v, idx);
-    ls.qdd = gather(s.qdd, idx);
-    ls.t = s.t;
-    lr.reset(static_cast<int>(idx.size()), true);
-    e->evaluate(ls, lr, true);
-    for (size_t i = 0; i < idx.size(); ++i)
-      for (size_t j = 0; j < idx.size(); ++j)
-        M(idx[i], idx[j]) += lr.M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
-  }
-  Eigen::MatrixXd stacked(M.rows() + A.rows(), m.num_dofs());
-  stacked << M, A;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(stacked);
-  lu.setThreshold(1e-12);
-  const Eigen::MatrixXd kernel = lu.dimensionOfKernel() > 0 ? Eigen::MatrixXd(lu.kernel()) : Eigen::MatrixXd();
-  for (Eigen::Index k = 0; k < kernel.cols(); ++k) {
-    os << "massless motion no joint determines:";
-    const Eigen::VectorXd v = kernel.col(k) / kernel.col(k).cwiseAbs().maxCoeff();
-    bool first = true;
-    for (const Node& n : m.nodes())
-      for (int d = 0; d < n.ndof; ++d)
-        if (std::fabs(v[n.first_dof + d]) > 1e-8) {
-          os << (first ? " " : ", ") << "body '" << n.name << "' (" << coordinate_name(n.kind, d) << ")";
-          first = false;
-        }
-    os << " has no mass and no joint fixes it, so its acceleration is undefined (springs alone do not"
+  for (const std::string& names : unheld_motions(m, s, false))
+    os << "massless motion no joint determines:" << names
+       << " has no mass and no joint fixes it, so its acceleration is undefined (springs alone do not"
           " make it determined); give it a mass or attach it by joints.\n";
-  }
   // One finding per line, indented under the message that carries them.
   std::string r = os.str();
   if (!r.empty() && r.back() == '\n') r.pop_back();
@@ -212,6 +229,14 @@ double constraint_violation(const Subdomain& sub, const MechanicalState& local) 
 std::string diagnose_singular_system(const Subdomain& sub, const MechanicalState& local) {
   if (sub.size() == 1) return diagnose_singular_system(sub.model(), local);
   return diagnose_singular_system(sub.global_model(), sub.gather(local));
+}
+
+std::string find_unheld_motion(const Subdomain& sub, const MechanicalState& local) {
+  const MechanicalState s = sub.size() == 1 ? local : sub.gather(local);
+  const Model& m = sub.size() == 1 ? sub.model() : sub.global_model();
+  std::ostringstream os;
+  for (const std::string& names : unheld_motions(m, s, true)) os << "\n  nothing holds" << names;
+  return os.str();
 }
 
 }  // namespace alphaflex

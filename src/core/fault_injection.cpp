@@ -31,7 +31,7 @@ Fault& fault() {
   const size_t b = v.find(':', a + 1);
   f.what = v.substr(0, a);
   f.rank = std::atoi(v.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1).c_str());
-  if (b != std::string::npos) f.count = std::atol(v.substr(b + 1).c_str());
+  if (b != std::string::npos) f.count = v.substr(b + 1) == "*" ? -1 : std::atol(v.substr(b + 1).c_str());
   int me = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &me);
   f.armed = me == f.rank;
@@ -43,7 +43,7 @@ Fault& fault() {
 bool fault_injected(const char* what) {
   Fault& f = fault();
   if (!f.armed || f.what != what) return false;
-  return ++f.calls == f.count;
+  return ++f.calls == f.count || f.count < 0;
 }
 
 }  // namespace alphaflex

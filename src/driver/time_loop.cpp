@@ -20,6 +20,19 @@ void Checkpointer::write(long n, long last_written, const MechanicalState& s, Ge
   if (!writer_) return;
   const double t0 = MPI_Wtime();
   writer_->commit();
+  const RunPosition pos = position(n, last_written, integrator, c, estimator, counters);
+  counters.checkpoint_bytes = write_checkpoint(sub_, path_, s, integrator.auxiliary(), pos, parameters_, h_, keep_);
+  counters.checkpoint = path_;
+  ++counters.checkpoints;
+  counters.checkpoint_time += MPI_Wtime() - t0;
+  last_ = MPI_Wtime();
+  // Modified Newton: a restart has no factorization to keep; refactor here too, so that the run
+  // and its restart take the same iterations bit for bit.
+  integrator.invalidate_factorization();
+}
+
+RunPosition Checkpointer::position(long n, long last_written, const GeneralizedAlpha& integrator, const StepController& c,
+                                   const PositionErrorEstimator& estimator, const LoopCounters& counters) const {
   const StepControllerState& st = c.state();
   RunPosition pos;
   pos.step = n;
@@ -47,14 +60,7 @@ void Checkpointer::write(long n, long last_written, const MechanicalState& s, Ge
   pos.history_h2 = hist.h2;
   pos.history_m1 = hist.m1;
   pos.history_m2 = hist.m2;
-  counters.checkpoint_bytes = write_checkpoint(sub_, path_, s, integrator.auxiliary(), pos, parameters_, h_, keep_);
-  counters.checkpoint = path_;
-  ++counters.checkpoints;
-  counters.checkpoint_time += MPI_Wtime() - t0;
-  last_ = MPI_Wtime();
-  // Modified Newton: a restart has no factorization to keep; refactor here too, so that the run
-  // and its restart take the same iterations bit for bit.
-  integrator.invalidate_factorization();
+  return pos;
 }
 
 TimeLoop::TimeLoop(const Subdomain& sub, GeneralizedAlpha& integrator, StepController& controller, Checkpointer& checkpointer,
@@ -158,7 +164,23 @@ void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopC
   MechanicalState saved;
   Eigen::VectorXd saved_a;
   long n = first_step - 1;
-  bool last = false;
+  bool last = false, fields_now = false;
+  // The state at every commit of the results (a commit happens inside an observer, before
+  // last_written moves on: an output step being written counts as written).
+  struct CommitHook {
+    ResultsWriter* writer;
+    ~CommitHook() {
+      if (writer) writer->on_commit(nullptr);  // the hook sees this function's locals only
+    }
+  } hook{writer_ && settings_.on_commit ? writer_ : nullptr};
+  auto keep_committed = [&] {
+    settings_.on_commit(s, integrator_.auxiliary(),
+                        checkpointer_.position(n, fields_now ? n : last_written, integrator_, controller_, estimator_, counters));
+  };
+  if (hook.writer) {
+    writer_->on_commit(keep_committed);
+    keep_committed();
+  }
   while (!last) {
     const StepPlan p = controller_.plan(s.t);
     if (retries) {
@@ -205,7 +227,9 @@ void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopC
     ++counters.steps;
     last = p.last;
     const bool fields = (n % settings_.output_every == 0) || last || p.output;
+    fields_now = fields;
     observe(n, s, fields);
+    fields_now = false;
     if (fields) last_written = n;
     if (!last) due(n);
   }

@@ -23,7 +23,8 @@ void agree(const Subdomain& sub, const std::string& local_error) {
   if (!error.empty()) throw Error(error);
 }
 
-/// The HDF5 calls on one file, every one checked: each call's status (hid_t or herr_t, < 0 if it
+/// The HDF5 calls on one file, every one checked (HDF5's own error stack is not printed: from the
+/// first H5Calls on, the process reports HDF5 failures through these messages only): each call's status (hid_t or herr_t, < 0 if it
 /// failed) goes through operator(), which keeps the first failure as "cannot OPERATION: FILE" with
 /// errno's text when the call left one (a full or vanished file system). The caller makes the
 /// ranks agree on error() (collective calls fail on every rank or must be agreed on).
@@ -32,7 +33,7 @@ class H5Calls {
   explicit H5Calls(std::string file);
   template <class Status>
   Status operator()(Status status, const std::string& operation) {
-    if (status < 0) fail(operation);
+    if (status < 0 || injected_disk_full()) fail(operation);
     clear_errno();
     return status;
   }
@@ -45,6 +46,7 @@ class H5Calls {
 
  private:
   static void clear_errno();
+  static bool injected_disk_full();
   std::string file_, error_;
 };
 
@@ -69,14 +71,23 @@ struct StateRows {
 /// Creates dataset `name` of `rows.total` × `cols` values in `loc` and writes this rank's rows
 /// (`rows.mine` × `cols` values, in row order) with the transfer list `xfer`. Collective. A failed
 /// call is recorded in `h5` (the caller makes the ranks agree on it).
-void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer);
+/// With `checksum`, the dataset is chunked with HDF5's Fletcher32 filter: a read of it fails
+/// if a byte changed since it was written (checkpoints).
+void write_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, int cols, const double* data, hid_t xfer,
+                bool checksum = false);
 void write_int_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const int* data, hid_t xfer);
-void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer);
+void write_long_rows(H5Calls& h5, hid_t loc, const char* name, const Rows& rows, const long long* data, hid_t xfer,
+                     bool checksum = false);
 
 /// The whole of a dataset as doubles / integers (every rank reads all of it); false if missing or
 /// unreadable.
 bool read_all(hid_t loc, const char* name, std::vector<double>& out);
 bool read_all(hid_t loc, const char* name, std::vector<long long>& out);
+/// The whole of dataset `where`/`name`, which must hold `expected` values: checked before anything
+/// is allocated (a flipped byte in a dimension must not ask for 10^12 values). Empty, or what is
+/// wrong, naming the dataset: missing, of another size, or unreadable (its checksum does not match).
+std::string read_expected(hid_t loc, const std::string& where, const char* name, size_t expected, std::vector<double>& out);
+std::string read_expected(hid_t loc, const std::string& where, const char* name, size_t expected, std::vector<long long>& out);
 
 /// A scalar attribute of an object (written by every rank with the same value: collective).
 void write_attribute(H5Calls& h5, hid_t loc, const char* name, double value);
@@ -88,6 +99,25 @@ void write_attribute_array(H5Calls& h5, hid_t loc, const char* name, double valu
 bool read_attribute(hid_t loc, const char* name, double& value);
 bool read_attribute(hid_t loc, const char* name, long long& value);
 bool read_attribute(hid_t loc, const char* name, std::string& value);
+
+/// Closes a file after a failed write without a second failure. HDF5 writes the file's metadata
+/// when it closes it; on a full disk that write fails too (cutting the file first does not help:
+/// the metadata of a part with many steps is most of its size), which leaves the file half-closed
+/// in HDF5's tables, and HDF5 closes it again when MPI_Finalize ends the library — and crashes
+/// (issue 24, defect 1). So this process's descriptors of `path` are first replaced by an anonymous
+/// memory file (memfd_create; the data goes nowhere), then the objects left open in the file and
+/// the file are closed. Collective for a file opened with MPI-IO. The caller removes the file.
+/// Errors are ignored: the write has failed already, and its message is the one to report.
+void discard_file(hid_t file, const std::string& path);
+
+/// Whether the file system of `path` (a file open in HDF5 as `file`) has room for what HDF5 holds
+/// for it in memory (its end of allocation beyond the blocks on disk: metadata is written when the
+/// file is flushed or closed) and `more` bytes: empty, or the OutputError's text for `operation`.
+/// Why ask before writing: with MPI-IO, HDF5 writes a file's metadata in collective steps, and a
+/// write that fails on one rank in the middle of them leaves the ranks in different collective
+/// calls (a hang, seen on a full tmpfs); a failure found here is agreed on before any of them.
+/// Another process can still fill the disk in between: then the write fails as before.
+std::string room_for(const std::string& path, hid_t file, unsigned long long more, const std::string& operation);
 
 /// File access for `comm`: MPI-IO when it has more than one rank, HDF5's default otherwise.
 hid_t file_access(H5Calls& h5, MPI_Comm comm);

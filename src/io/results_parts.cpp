@@ -52,15 +52,35 @@ ResultsParts::ResultsParts(const Subdomain& sub, const std::vector<ElementGrid>&
     const int r = layout_.link_row[static_cast<size_t>(sub.global_constraint(static_cast<int>(c)))];
     if (r >= 0) link_.add(3 * static_cast<unsigned long long>(r), 3);
   }
+  // A first estimate of an output step's bytes: its values, and ~1 KiB of HDF5 metadata per
+  // dataset (object header, the group's index); measured after each step.
+  unsigned long long values = node_.total * 26 + joint_.total * 9 + state_.conf.total + 2 * state_.dof.total + state_.mult.total;
+  size_t sets = 20;
+  for (size_t k = 0; k < grids.size(); ++k)
+    for (const CellField& f : grids[k].fields) {
+      values += cells_[k].total * static_cast<unsigned long long>(f.components);
+      ++sets;
+    }
+  step_bytes_ = 8 * values + 1024 * sets;
   H5Calls h5(parts_dir_);
   transfer_ = transfer_list(h5, sub.comm());
   agree<OutputError>(sub, h5.error());
 }
 
 ResultsParts::~ResultsParts() {
-  // A part that was not committed stays under its temporary name: it is not part of the results.
-  if (part_ >= 0) H5Fclose(part_);
+  // A part that was not committed is not part of the results (an error ended the run).
+  discard();
   if (transfer_ >= 0) H5Pclose(transfer_);
+}
+
+void ResultsParts::discard() {
+  if (part_ < 0) return;
+  discard_file(part_, open_path_);
+  part_ = -1;
+  if (sub_.rank() == 0) {
+    std::error_code ec;
+    std::filesystem::remove(open_path_, ec);
+  }
 }
 
 void ResultsParts::write_topology(H5Calls& h5, hid_t file) const {
@@ -218,6 +238,11 @@ void ResultsParts::write_step(const MechanicalState& s, const std::string& group
     if (layout_.link_row[static_cast<size_t>(sub_.global_constraint(static_cast<int>(c)))] >= 0)
       append_link(con, r.location, s, links);
   }
+  // Room for this step and the metadata HDF5 still holds, with a margin (twice the step, 64 KiB for
+  // the close), agreed on before the collective writes.
+  agree<OutputError>(sub_, room_for(open_path_, part_, 2 * step_bytes_ + 65536, "write the group " + group));
+  haddr_t eoa_before = 0;
+  H5Fget_eoa(part_, &eoa_before);
   H5Calls h5(open_path_);
   const hid_t g = h5(H5Gcreate2(part_, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create the group " + group);
   agree<OutputError>(sub_, h5.error());
@@ -278,10 +303,21 @@ void ResultsParts::write_step(const MechanicalState& s, const std::string& group
   // Tests of error handling: a write that fails on one rank only.
   if (fault_injected("output")) h5.fail("write the group " + group + " (injected fault, -af_inject_fault output)");
   agree<OutputError>(sub_, h5.error());  // every rank throws the same OutputError if one write failed
+  haddr_t eoa_after = 0;
+  if (H5Fget_eoa(part_, &eoa_after) >= 0 && eoa_after > eoa_before) step_bytes_ = std::max<unsigned long long>(step_bytes_, eoa_after - eoa_before);
 }
 
 std::string ResultsParts::close(long long k) {
   H5Calls h5(open_path_);
+  // The flush is where a full disk shows; a failed H5Fclose would leave the file half-closed in
+  // HDF5 (hdf5_rows.hpp, discard_file), so the ranks agree on the flush before the close.
+  const std::string room = sub_.first_error(room_for(open_path_, part_, 65536, "write the file"));
+  if (room.empty()) h5(H5Fflush(part_, H5F_SCOPE_LOCAL), "write the file");
+  const std::string error = room.empty() ? sub_.first_error(h5.error()) : room;
+  if (!error.empty()) {
+    discard();
+    return error;
+  }
   h5(H5Fclose(part_), "close the file");
   part_ = -1;
   if (sub_.rank() == 0 && h5.error().empty()) {
@@ -306,8 +342,19 @@ std::string ResultsParts::write_links(const std::vector<OutputStep>& steps) cons
     h5(H5Lcreate_external(target.c_str(), ("/" + s.group).c_str(), f, s.group.c_str(), H5P_DEFAULT, H5P_DEFAULT),
        "link /" + s.group);
   }
+  if (!h5.error().empty()) {
+    discard_file(f, tmp);
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    return h5.error();
+  }
   h5(H5Fclose(f), "close the file");
-  if (!h5.error().empty()) return h5.error();
+  return h5.error();
+}
+
+std::string ResultsParts::publish_links() const {
+  const std::string tmp = h5_path_ + ".tmp";
+  H5Calls h5(tmp);
   std::error_code ec;
   std::filesystem::rename(tmp, h5_path_, ec);
   if (ec) h5.fail("rename to " + h5_path_);  // errno says why

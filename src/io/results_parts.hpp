@@ -37,8 +37,13 @@ class ResultsParts {
   /// Closes the open part k (collective: all of every rank's rows are on disk) and renames it
   /// into place (rank 0): the error, if any (the caller agrees on it).
   std::string close(long long k);
-  /// Rank 0: NAME.h5 rewritten with links to `steps` (a new file renamed over the old one).
+  /// After a failed write: the open part is closed without its data (discard_file) and removed
+  /// (rank 0). Collective; nothing if no part is open.
+  void discard();
+  /// Rank 0: NAME.h5 with links to `steps`, written under a temporary name; publish_links()
+  /// renames it over the old one (separately, so that the XDMF index is renamed with it).
   std::string write_links(const std::vector<OutputStep>& steps) const;
+  std::string publish_links() const;
   /// Rank 0: the output steps of parts 0 … parts−1 (times and part numbers), for a restart; an
   /// error if one is missing or unreadable.
   std::string read_steps(long long parts, std::vector<OutputStep>& steps) const;
@@ -59,6 +64,9 @@ class ResultsParts {
   hid_t transfer_ = -1;
   hid_t part_ = -1;  ///< the open part, −1 if none
   std::string open_path_;  ///< its path (temporary name)
+  /// Bytes an output step adds to a part (the largest measured, first an estimate): the room
+  /// asked of the file system before a step is written (hdf5_rows.hpp, room_for).
+  unsigned long long step_bytes_ = 0;
   // This rank's rows: owned nodes, its joints, and per grid its elements and connectivity entries.
   Rows node_, joint_;
   NodeLayout layout_;

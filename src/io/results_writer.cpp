@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/io/output_lock.hpp"
 #include "hdf5_rows.hpp"
 #include "results_mesh.hpp"
 #include "results_parts.hpp"
@@ -43,6 +44,16 @@ ResultsWriter::ResultsWriter(const Subdomain& sub, const std::string& outdir, co
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) err = "cannot create the output directory " + dir.string() + " (" + ec.message() + ")";
+    // One run at a time writes NAME's results here (io/output_lock.hpp), before any file is touched.
+    if (err.empty()) {
+      try {
+        std::string note;
+        lock_ = std::make_unique<OutputLock>(dir.string(), name, &note);
+        if (!note.empty()) warnings_.push_back(note);
+      } catch (const OutputError& e) {
+        err = e.what();
+      }
+    }
     if (err.empty() && hdf5_) {
       fs::create_directories(parts_dir_, ec);
       if (ec) err = "cannot create the output directory " + parts_dir_ + " (" + ec.message() + ")";
@@ -70,9 +81,11 @@ ResultsWriter::ResultsWriter(const Subdomain& sub, const std::string& outdir, co
       fs::remove(h5_path_, ec);
       fs::remove(xdmf_path_, ec);
       err = parts_file_->write_links(steps_);
+      if (err.empty()) err = parts_file_->publish_links();
     }
   }
   agree<OutputError>(sub, err);
+  committed_ = position();
 }
 
 ResultsWriter::~ResultsWriter() = default;
@@ -118,6 +131,23 @@ void ResultsWriter::commit() {
   if (err.empty()) err = write_index();
   agree<OutputError>(sub_, err);
   last_commit_cost_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  committed_ = position();
+  if (on_commit_) on_commit_();
+}
+
+void ResultsWriter::abandon() {
+  // The open part and the temporary files of a commit that did not happen go (their space is what
+  // a checkpoint may need now); the CSV is cut to the committed rows; NAME.h5 and the index are the
+  // last committed ones, untouched.
+  if (parts_file_) parts_file_->discard();
+  if (root_) {
+    if (parts_file_) parts_file_->remove_from(committed_.parts);  // a part closed by the failed commit
+    std::error_code ec;
+    std::filesystem::remove(h5_path_ + ".tmp", ec);
+    if (xdmf_) xdmf_->discard();
+    if (csv_) csv_->cut(committed_.csv_rows);
+  }
+  csv_.reset();
 }
 
 void ResultsWriter::finish() { commit(); }
@@ -134,8 +164,18 @@ int ResultsWriter::fields_written() const { return static_cast<int>(steps_.size(
 
 std::string ResultsWriter::write_index() const {
   if (!root_) return {};
+  // NAME.h5 and the index are written in full first, then renamed one right after the other: a
+  // kill or a full disk while they are written leaves both as they were, so ParaView (the index)
+  // and scripts (NAME.h5) see the same steps (issue 24: the index had lagged a commit behind).
   std::string err = parts_file_->write_links(steps_);
   if (err.empty()) err = xdmf_->write(steps_);
+  if (err.empty()) err = parts_file_->publish_links();
+  if (err.empty()) err = xdmf_->publish();
+  if (!err.empty()) {
+    std::error_code ec;
+    std::filesystem::remove(h5_path_ + ".tmp", ec);
+    xdmf_->discard();
+  }
   return err;
 }
 
@@ -185,6 +225,7 @@ void ResultsWriter::resume_from(const ResultsPosition& at) {
   // In a fresh directory the HDF5 results start at the restart: steps and parts numbered from 0.
   parts_ = fresh ? 0 : at.parts;
   agree<OutputError>(sub_, write_index());
+  committed_ = position();
 }
 
 }  // namespace alphaflex

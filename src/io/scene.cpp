@@ -5,9 +5,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -327,8 +329,17 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   // (io/scene_modes.hpp); a run ignores them.
   rd.read_parameters(root["parameters"]);
   scene.name = top.text("name", std::filesystem::path(label).stem().string());
-  if (scene.name.empty() || scene.name.find_first_of("/\\ ") != std::string::npos)
-    rd.fail(root["name"], "name", "expected a plain file name (no spaces or slashes)");
+  // The name of the results' files (NAME.h5, NAME.xdmf, NAME.csv): a safe set, so that every file
+  // system and ParaView's XDMF reader take them (a non-ASCII name broke the reader; issue 24).
+  const bool safe = std::all_of(scene.name.begin(), scene.name.end(),
+                                [](char c) {
+                                  const auto u = static_cast<unsigned char>(c);
+                                  return (u < 0x80 && std::isalnum(u)) || c == '_' || c == '-' || c == '.' || c == '+';
+                                });
+  if (scene.name.empty() || scene.name.size() > 100 || !safe || scene.name[0] == '.' || scene.name[0] == '-')
+    rd.fail(root["name"], "name",
+            "expected a plain file name of 1 to 100 characters from A-Z a-z 0-9 _ - . + (not starting with . or -), got '" +
+                scene.name.substr(0, 100) + (scene.name.size() > 100 ? "...'" : "'"));
   scene.description = top.text("description");
   read_solver(rd, root["solver"], scene.settings, scene.warnings);
   read_output(rd, root["output"], scene.settings);
@@ -367,6 +378,58 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   std::sort(rs.breakpoints.begin(), rs.breakpoints.end());
   rs.breakpoints.erase(std::unique(rs.breakpoints.begin(), rs.breakpoints.end()), rs.breakpoints.end());
   return scene;
+}
+
+/// A scene file's text as one YAML document, with the three things yaml-cpp would get wrong
+/// refused by name (issue 24): nesting of [ ] or { } deeper than 1000 (yaml-cpp gives up with "bad
+/// file", or runs out of stack), a second document after '---' (yaml-cpp's Load ignores it), and
+/// YAML merge keys `<<:` (yaml-cpp reads `<<` as an ordinary key, so the merged keys went missing).
+YAML::Node parse_scene_text(const std::string& text, const std::string& label) {
+  // Nesting, and a document marker '---' after content (a line of its own, or followed by a space):
+  // found in the text (yaml-cpp's LoadAll loops for ever on some broken files).
+  int depth = 0, line = 1;
+  bool comment = false, content = false, line_start = true;
+  for (size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (line_start && text.compare(k, 3, "---") == 0 && (k + 3 == text.size() || std::isspace(static_cast<unsigned char>(text[k + 3]))) &&
+        content)
+      throw InputError(label + ":" + std::to_string(line) +
+                       ": a second YAML document (after '---'): a scene is one document; remove the '---' or give the rest its own file");
+    line_start = false;
+    if (c == '\n') {
+      ++line;
+      comment = false;
+      line_start = true;
+    } else if (c == '#') {
+      comment = true;
+    } else if (!comment && c != ' ' && c != '\t' && c != '\r') {
+      content = true;
+      if ((c == '[' || c == '{') && ++depth > 1000)
+        throw InputError(label + ":" + std::to_string(line) + ": not valid YAML: lists or maps nested deeper than 1000 levels");
+      if (c == ']' || c == '}') --depth;
+    }
+  }
+  const YAML::Node root = YAML::Load(text);
+  // Merge keys, anywhere (an explicit stack: no recursion on a deep tree).
+  // Aliases can make a small file a huge tree (an alias of a list of aliases ...): the walk stops at
+  // 10^7 values, far beyond any scene.
+  std::vector<YAML::Node> todo{root};
+  for (long visited = 0; !todo.empty(); ++visited) {
+    if (visited > 10000000)
+      throw InputError(label + ": not a scene: its aliases (*name) expand to more than 10^7 values");
+    const YAML::Node n = todo.back();
+    todo.pop_back();
+    if (n.IsSequence())
+      for (const auto& item : n) todo.push_back(item);
+    if (!n.IsMap()) continue;
+    for (const auto& kv : n) {
+      if (kv.first.IsScalar() && kv.first.Scalar() == "<<")
+        throw InputError(label + ":" + std::to_string(kv.first.Mark().line + 1) +
+                         ": '<<': YAML merge keys are not supported; write the keys out (an alias *name of a whole value works)");
+      todo.push_back(kv.second);
+    }
+  }
+  return root;
 }
 
 Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
@@ -443,9 +506,10 @@ Scene read_scene(const std::string& path, const std::vector<std::string>& overri
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(path + ": cannot open the scene file (no such file)");
     if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": cannot open the scene file (not a file)");
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open the scene file");
-    return load([&] { return YAML::LoadFile(path); }, path, overrides);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return load([&] { return parse_scene_text(text, path); }, path, overrides);
   }
   // Rank 0 reads the file and the mesh; every rank parses the same text, so every rank reaches the
   // mesh (or fails with the same message) at the same point, and gmsh runs once per run.
@@ -468,11 +532,11 @@ Scene read_scene(const std::string& path, const std::vector<std::string>& overri
     const std::string b = broadcast_text(std::string(bytes.begin(), bytes.end()), comm);
     return rank == 0 ? unpack(bytes) : unpack(std::vector<char>(b.begin(), b.end()));
   };
-  return load([&] { return YAML::Load(text); }, path, overrides, from_rank0);
+  return load([&] { return parse_scene_text(text, path); }, path, overrides, from_rank0);
 }
 
 Scene read_scene_text(const std::string& yaml, const std::string& label, const std::vector<std::string>& overrides) {
-  return load([&] { return YAML::Load(yaml); }, label, overrides);
+  return load([&] { return parse_scene_text(yaml, label); }, label, overrides);
 }
 
 }  // namespace alphaflex

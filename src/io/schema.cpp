@@ -1,9 +1,10 @@
 #include "alphaflex/io/schema.hpp"
 
-#include <set>
-
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <map>
+#include <set>
 
 namespace alphaflex::input {
 
@@ -205,6 +206,14 @@ std::string Reader::item_name(const YAML::Node& item, const char* list, size_t i
   path = std::string(list) + "[" + std::to_string(i) + "]";
   if (!item.IsMap()) fail(item, path, not_a_map);
   const std::string name = text(need(item, "name", path), path + ".name");
+  // Names go to messages, the CSV header and the results: printable ASCII only (a newline, a tab, a
+  // NUL byte or 300 characters broke them; issue 24), docs/input.md "Names".
+  const bool printable = std::all_of(name.begin(), name.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
+  if (name.empty() || name.size() > 100 || !printable || name.front() == ' ' || name.back() == ' ')
+    fail(item["name"], path + ".name",
+         "expected a name of 1 to 100 printable ASCII characters (letters, digits, punctuation, inner spaces; no control "
+         "characters, no leading or trailing space), got " + std::to_string(name.size()) + " characters" +
+             (printable ? std::string() : " with a control or non-ASCII character"));
   path = std::string(list) + "[" + name + "]";
   return name;
 }
@@ -403,12 +412,17 @@ Section::Interval Section::interval(const std::string& name) const {
   const std::string expected = "expected a number of steps (an integer >= " + number_text(k.range.lo) +
                                ") or a wall time with its unit, e.g. \"600 s\", \"10 min\", \"2 h\"";
   std::istringstream in(n.IsScalar() ? n.Scalar() : std::string());
-  double value = 0.0;
-  std::string unit, rest;
-  in >> value >> unit;
+  std::string number, unit, rest;
+  in >> number >> unit;
   if (!unit.empty()) {
     in >> rest;
-    if (!(value > 0.0) || !rest.empty() || (unit != "s" && unit != "min" && unit != "h")) rd_.fail(n, key_path(name), expected);
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(number.c_str(), &end);
+    if (errno == ERANGE || !std::isfinite(value))  // "1e400 h": say so, not "unexpected 'h'" (issue 24)
+      rd_.fail(n, key_path(name), expected + " (" + number + " is out of the range of a double)");
+    if (*end != '\0' || !(value > 0.0) || !rest.empty() || (unit != "s" && unit != "min" && unit != "h"))
+      rd_.fail(n, key_path(name), expected);
     out.seconds = value * (unit == "s" ? 1.0 : unit == "min" ? 60.0 : 3600.0);
     return out;
   }

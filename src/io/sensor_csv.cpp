@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <unistd.h>
 
 namespace alphaflex::io_detail {
 
@@ -58,6 +59,21 @@ std::string SensorCsv::flush() {
   // the file was opened.
   if (std::fflush(file_) != 0 || std::ferror(file_)) return failure("write the sensor file");
   return {};
+}
+
+void SensorCsv::cut(long long rows) {
+  if (!file_) return;
+  std::fclose(file_);  // what stays buffered goes (or fails to go) now; the cut below decides
+  file_ = nullptr;
+  std::ifstream in(path_, std::ios::binary);
+  long long offset = 0;
+  std::string line;
+  for (long long k = 0; k <= rows && std::getline(in, line); ++k) {
+    if (in.eof()) break;  // a last line without its newline is a row cut off
+    offset += static_cast<long long>(line.size()) + 1;
+  }
+  in.close();
+  if (truncate(path_.c_str(), static_cast<off_t>(offset)) != 0) { /* the run has failed already: its message stands */ }
 }
 
 }  // namespace alphaflex::io_detail

@@ -25,6 +25,9 @@ class SensorCsv {
   void row(double t, const std::vector<double>& values);
   /// Everything written so far to the file system; the error, if a write failed.
   std::string flush();
+  /// After a failed write: the file cut after `rows` rows (what was committed with the HDF5
+  /// results; a row cut off by a full disk goes too) and closed. Needs no space: truncate(2).
+  void cut(long long rows);
   const std::string& path() const { return path_; }
 
  private:

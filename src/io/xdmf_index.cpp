@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "alphaflex/core/fault_injection.hpp"
+
 namespace alphaflex::io_detail {
 
 XdmfIndex::XdmfIndex(std::string path, std::string parts_name, size_t nodes, size_t joints,
@@ -142,11 +144,30 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
   if (nj > 0) grid("joints", nj, "joints", "joint_location", {{"force", "joint_force"}, {"moment", "joint_moment"}});
   x << " </Domain>\n</Xdmf>\n";
   x.close();
-  if (!x) return failure("write the XDMF index", tmp);
+  if (fault_injected("index")) {  // tests (core/fault_injection.hpp): the index cannot be written, as on a full disk
+    errno = ENOSPC;
+    x.setstate(std::ios::badbit);
+  }
+  if (!x) {
+    const std::string e = failure("write the XDMF index", tmp);
+    discard();
+    return e;
+  }
+  return {};
+}
+
+std::string XdmfIndex::publish() const {
+  const std::string tmp = path_ + ".tmp";
+  errno = 0;
   std::error_code ec;
   std::filesystem::rename(tmp, path_, ec);
   if (ec) return failure("rename to " + path_, tmp);
   return {};
+}
+
+void XdmfIndex::discard() const {
+  std::error_code ec;
+  std::filesystem::remove(path_ + ".tmp", ec);
 }
 
 }  // namespace alphaflex::io_detail

@@ -20,8 +20,12 @@ class XdmfIndex {
   /// `joints` joints and the element grids `grids`.
   XdmfIndex(std::string path, std::string parts_name, size_t nodes, size_t joints, const std::vector<ElementGrid>& grids,
             const NodeLayout& layout);
-  /// Rewrites the index with `steps`: the error, if any (the caller agrees on it).
+  /// The index of `steps`, written under a temporary name (NAME.xdmf.tmp); publish() renames it
+  /// over the index. The error, if any (the caller agrees on it).
   std::string write(const std::vector<OutputStep>& steps) const;
+  std::string publish() const;
+  /// Removes a temporary index left by a failed commit.
+  void discard() const;
   const std::string& path() const { return path_; }
 
  private:

@@ -354,6 +354,15 @@ class Reader {
       auto c = coords.find(gmsh_tag);
       if (c == coords.end())
         fail("physical group '" + g.name + "' uses node " + std::to_string(gmsh_tag) + ", which has no coordinates");
+      // Lengths are formed from coordinate differences squared: beyond 1e150 m they overflow, and the
+      // first symptom was far away (a section frame that is not a rotation; issue 24).
+      if (!(c->second.cwiseAbs().maxCoeff() <= 1e150)) {
+        std::ostringstream os;
+        os.precision(6);
+        os << "node " << gmsh_tag << " of physical group '" << g.name << "' is at (" << c->second.x() << ", " << c->second.y()
+           << ", " << c->second.z() << "): expected coordinates of magnitude at most 1e150 m (squared lengths must stay finite)";
+        fail(os.str());
+      }
       const int id = static_cast<int>(mesh.points.size());
       local.emplace(gmsh_tag, id);
       mesh.points.push_back(c->second);

@@ -155,7 +155,8 @@ const std::string kSpecialBytes = std::string("\0\t\r\n :-[]{},#&*!|>'\"%@`?^()/
 const std::vector<std::string> kMshInts = {"0", "-1", "1", "2", "3", "7", "1000000", "2147483647", "2147483648",
                                            "4294967295", "4294967296", "9223372036854775807", "18446744073709551615",
                                            "99999999999999999999", "-2147483648", "x", "1.5", ""};
-const std::vector<std::string> kMshReals = {"nan", "-nan", "inf", "-inf", "1e308", "-1e308", "1e400", "1e-320", "0", "x"};
+const std::vector<std::string> kMshReals = {"nan", "-nan", "inf", "-inf", "1e308", "-1e308", "1e400", "1e-320", "0", "x",
+                                            "1e200", "-1e160"};  // finite, but their squares are not (issue 24)
 
 /// Replaces [b, e) of `s`.
 std::string replaced(const std::string& s, size_t b, size_t e, const std::string& with) {
@@ -341,6 +342,37 @@ void scene_mutation(Lines& l, std::string& text, Rng& rng, std::vector<std::stri
     text = truncate(join(l), rng, log);
     l = split(text);
     return;
+  } else if (kind < 92) {  // issue 24: a key given twice, a merge key, a control character, a second document
+    const size_t i = line_where(l, rng, contentful);
+    if (i != std::string::npos) {
+      std::string& s = l.lines[i];
+      const size_t indent = s.find_first_not_of(' ');
+      size_t b = 0, e = 0;
+      switch (rng.below(4)) {
+        case 0:  // the same line again: its key twice in one map (parameters: and mesh.parameters: among others)
+          l.lines.insert(l.lines.begin() + static_cast<long>(i) + 1, s);
+          log.push_back(where(i) + ": repeated " + shown(s));
+          return;
+        case 1:  // a YAML merge key, which yaml-cpp reads as an ordinary key
+          l.lines.insert(l.lines.begin() + static_cast<long>(i) + 1,
+                         std::string(indent == std::string::npos ? 0 : indent, ' ') + "<<: {mass: 1}");
+          log.push_back(where(i) + ": merge key inserted after " + shown(s));
+          return;
+        case 2:  // a control character (tab, NUL, newline, DEL) inside a value
+          if (value_span(s, b, e)) {
+            const char* c = rng.pick(std::vector<const char*>{"\\t", "\\0", "\\n", "\\x7f"});
+            const std::string before = s;
+            s = replaced(s, b, e, "\"a" + std::string(c) + "b\"");
+            log.push_back(where(i) + ": control character in " + shown(before) + " -> " + shown(s));
+            return;
+          }
+          break;
+        default:  // a second document
+          l.lines.insert(l.lines.begin() + static_cast<long>(i) + 1, "---");
+          log.push_back(where(i) + ": '---' inserted after " + shown(s));
+          return;
+      }
+    }
   }
   // random bytes (also the fallback when a mutation found nothing to act on)
   text = random_bytes(join(l), rng, log);

@@ -6,18 +6,34 @@
 
 #include <exception>
 #include <memory>
+#include <string>
 
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/integrators/generalized_alpha.hpp"
+#include "alphaflex/io/checkpoint.hpp"
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
 
 namespace alphaflex {
 
+/// The state at the last commit of the results, and where its checkpoint goes: what a run leaves
+/// when a later write fails (a full disk; app/simulation.cpp).
+struct CommittedState {
+  MechanicalState state;      ///< local
+  Eigen::VectorXd auxiliary;  ///< local
+  RunPosition position;
+  std::string checkpoint;     ///< its path (empty: nothing committed yet)
+  AlphaParameters parameters;
+  double h = 0.0;
+  int keep = 1;
+  std::string scene_file, outdir;
+};
+
 /// Members go in reverse order of destruction.
 struct RunObjects {
+  CommittedState committed;
   std::unique_ptr<Subdomain> sub;
   std::unique_ptr<SaddlePointSystem> system;
   std::unique_ptr<LinearSolver> solver;

@@ -40,5 +40,9 @@ std::vector<RedundantEquation> find_redundant_constraints(const Subdomain& sub, 
                                                           double tol = 1e-10);
 double constraint_violation(const Subdomain& sub, const MechanicalState& local);
 std::string diagnose_singular_system(const Subdomain& sub, const MechanicalState& local);
+/// Statics: the motions that neither a joint nor a stiffness holds (null space of [K; Φ_q] at the
+/// state, dense, up to 2000 coordinates), one line each ("\n  nothing holds body 'b' (x), …");
+/// empty if there is none. Collective.
+std::string find_unheld_motion(const Subdomain& sub, const MechanicalState& local);
 
 }  // namespace alphaflex

@@ -47,6 +47,10 @@ class Checkpointer {
   /// factorization (modified Newton), as a restart has none, so run and restart stay bit-identical.
   void write(long n, long last_written, const MechanicalState& s, GeneralizedAlpha& integrator, const StepController& c,
              const PositionErrorEstimator& estimator, LoopCounters& counters);
+  /// The position a checkpoint after step `n` records (the controller's state, the estimator's
+  /// history, the results as committed so far).
+  RunPosition position(long n, long last_written, const GeneralizedAlpha& integrator, const StepController& c,
+                       const PositionErrorEstimator& estimator, const LoopCounters& counters) const;
   bool active() const { return writer_ != nullptr; }
   const std::string& path() const { return path_; }
   double last_wall() const { return last_; }
@@ -70,6 +74,10 @@ struct TimeLoopSettings {
   /// The stop signal received on this rank (0: none) and its name (app/stop_signals.hpp).
   std::function<int()> stop_signal;
   std::function<const char*(int)> signal_name;
+  /// Called after every commit of the results that succeeded, with the state the results end at and
+  /// the position of its checkpoint: what a run keeps, to checkpoint it if a later write fails (a
+  /// full disk, issue 24; app/simulation.cpp).
+  std::function<void(const MechanicalState&, const Eigen::VectorXd& auxiliary, const RunPosition&)> on_commit;
 };
 
 class TimeLoop {

@@ -7,7 +7,11 @@
 // the step-cut policy, the summary's counters, the position of the results (sensor rows, output
 // steps, parts); the scheme (α_m, α_f, β, γ, h); and a fingerprint of the model (kinds and names of
 // the nodes, sizes, types and names of the joints, types and names of the elements), so that a
-// checkpoint of another model is refused with what differs. The state is written in model order
+// checkpoint of another model is refused with what differs; and per element the sums of |r|, |K|,
+// |C|, |M| at the initial state, so that a restart with changed physics (a beam's EA) warns naming
+// the element. Every dataset has a Fletcher32 checksum and the metadata is in HDF5's checksummed
+// format (1.10): a corrupted checkpoint is refused naming the dataset or attribute, with every
+// size checked against the model before any allocation. The state is written in model order
 // with each rank's rows (parallel HDF5), so a checkpoint restarts on any number of ranks.
 //
 // Atomic: the file is written under a temporary name and renamed over the last one (with `keep` > 1

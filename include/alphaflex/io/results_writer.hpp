@@ -29,6 +29,7 @@
 // (sensor_csv.hpp); it decides when to commit and makes the ranks agree on every outcome. A failed
 // write is an OutputError on every rank (exit code 6), naming the file and the operation.
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +46,7 @@ class ResultsParts;
 class XdmfIndex;
 class SensorCsv;
 }  // namespace io_detail
+class OutputLock;
 
 /// Where a restart picks up the results of the run it continues (from its checkpoint): the
 /// sensor rows, output steps and parts that were complete at the checkpoint.
@@ -81,6 +83,15 @@ class ResultsWriter {
 
   /// What has been committed (for a checkpoint, after commit()).
   ResultsPosition position() const;
+  /// The position of the last commit that succeeded.
+  const ResultsPosition& committed() const { return committed_; }
+  /// Called after every commit that succeeded (the run keeps the state it committed, for a
+  /// checkpoint of it if a later write fails).
+  void on_commit(std::function<void()> f) { on_commit_ = std::move(f); }
+  /// After an OutputError (a full disk): the results are left as last committed — the open part
+  /// and the temporary files removed, the CSV cut to the committed rows (no cut-off line) — and
+  /// nothing more is written. Collective.
+  void abandon();
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   std::string h5_path() const { return h5_path_; }
@@ -103,6 +114,10 @@ class ResultsWriter {
   double last_commit_cost_ = 0.0;  ///< s of wall time of the last commit (rank 0's)
   std::vector<io_detail::OutputStep> steps_, open_steps_;  ///< committed output steps; those of the open part
   std::vector<std::string> warnings_;
+  ResultsPosition committed_;
+  std::function<void()> on_commit_;
+  /// NAME.lock in the output directory (rank 0): released last, after every file is closed.
+  std::unique_ptr<OutputLock> lock_;
   std::unique_ptr<std::vector<io_detail::ElementGrid>> grids_;  ///< what the elements draw
   std::unique_ptr<io_detail::ResultsParts> parts_file_;         ///< HDF5 rows (if hdf5)
   std::unique_ptr<io_detail::XdmfIndex> xdmf_;                  ///< the index (if hdf5)
