@@ -14,10 +14,6 @@
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/expression.hpp"
 #include "alphaflex/core/time_function.hpp"
-#include "alphaflex/elements/applied_load_2d.hpp"
-#include "alphaflex/elements/rigid_body_2d.hpp"
-#include "alphaflex/elements/spring_damper_2d.hpp"
-#include "alphaflex/joints/planar_joints.hpp"
 
 namespace alphaflex {
 namespace {
@@ -108,9 +104,9 @@ const Schema& output_schema() {
       {"commit_interval", KeyType::Number, "s (wall time)", "1",
        "how long a part file of the results stays open before it is committed (renamed into place and listed in NAME.h5 and NAME.xdmf; docs/running.md): a run killed at any moment opens in ParaView up to its last commit. 0: every output step. The interval grows to 10 × the last commit's cost, so commits stay under ~10 % of a run; the first output step, checkpoints, the end, a failure and a stop signal always commit",
        Range::non_negative(), "wall-time interval (s; 0: every output step is committed at once)"},
-      {"checkpoint_every", KeyType::Text, "steps, or s/min/h", "none",
+      {"checkpoint_every", KeyType::Interval, "steps, or s/min/h", "none",
        "write NAME.checkpoint.h5 every so many steps (an integer ≥ 1) or so much wall time (`\"600 s\"`, `\"10 min\"`, `\"2 h\"`; dynamic runs); a checkpoint is also written at the end of every run, after a Newton failure (the last converged state) and on a stop signal. `alphaflex run SCENE --restart OUTDIR/NAME.checkpoint.h5 -o OUTDIR` goes on from it (docs/running.md)",
-       {}, "", "integer ≥ 1, or a wall time with its unit"},
+       Range::closed(1, 1000000000), "", "integer ≥ 1, or a wall time with its unit"},
       {"checkpoint_keep", KeyType::Integer, "–", "1", "how many checkpoints to keep (NAME.checkpoint.h5, NAME.checkpoint.1.h5, …)", Range::closed(1, 1000)},
       {"progress", KeyType::Number, "s (wall time)", "30",
        "rank 0, on stderr: when stderr is not a terminal (batch logs), a line `progress: t = … s (… %), step … of …, Newton … per step, wall … s, ETA … s` every this many seconds (0: none), `load factor = …` and load steps in a static analysis; on a terminal the same line is rewritten in place 4 times a second and cleared before the summary",
@@ -194,22 +190,9 @@ void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
   const Section o(rd, node, "output", output_schema());
   rs.commit_interval = o.number("commit_interval", rs.commit_interval);
   if (o.has("checkpoint_every")) {
-    // A whole number of steps, or a wall time with its unit: "600 s", "10 min", "2 h".
-    const YAML::Node c = o.node("checkpoint_every");
-    const char* expected = "expected a number of steps (an integer >= 1) or a wall time with its unit, e.g. \"600 s\", \"10 min\", \"2 h\"";
-    std::istringstream in(c.IsScalar() ? c.Scalar() : std::string());
-    double value = 0.0;
-    std::string unit, rest;
-    in >> value >> unit;
-    if (!unit.empty()) {
-      in >> rest;
-      if (!(value > 0.0) || !rest.empty() || (unit != "s" && unit != "min" && unit != "h"))
-        rd.fail(c, "output.checkpoint_every", expected);
-      rs.checkpoint_wall = value * (unit == "s" ? 1.0 : unit == "min" ? 60.0 : 3600.0);
-    } else {
-      if (!c.IsScalar()) rd.fail(c, "output.checkpoint_every", expected);
-      rs.checkpoint_steps = rd.integer(c, "output.checkpoint_every", 1, 1000000000);
-    }
+    const Section::Interval every = o.interval("checkpoint_every");
+    rs.checkpoint_steps = every.steps;
+    rs.checkpoint_wall = every.seconds;
   }
   rs.checkpoint_keep = o.integer("checkpoint_keep", rs.checkpoint_keep);
   rs.progress_interval = o.number("progress", rs.progress_interval);
@@ -217,338 +200,13 @@ void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
   rs.hdf5 = o.flag("hdf5", rs.hdf5);
 }
 
-std::vector<int> node_list(int a, int b) {
-  std::vector<int> v;
-  if (a >= 0) v.push_back(a);
-  if (b >= 0) v.push_back(b);
-  return v;
-}
-
-// ---- Planar bodies ------------------------------------------------------------------------------
-
-void read_rigid_body_2d(const Item& it) {
-  const Section& k = it.keys;
-  Node nd;
-  nd.name = it.name;
-  nd.kind = NodeKind::RigidBody2D;
-  const double m = k.number("mass"), J = k.number("inertia");
-  const Eigen::Vector2d p = k.vec2("position"), v = k.vec2("velocity");
-  nd.q0 = Eigen::Vector3d(p.x(), p.y(), k.number("angle", 0.0));
-  nd.v0 = Eigen::Vector3d(v.x(), v.y(), k.number("angular_velocity", 0.0));
-  const int id = it.model.add_node(nd);
-  it.model.add_element(std::make_unique<RigidBody2D>(it.name, id, m, J, it.sb.gravity.head<2>()));
-}
-
-void read_particle_2d(const Item& it) {
-  const Section& k = it.keys;
-  const double m = k.number("mass", 0.0);
-  Node nd;
-  nd.name = it.name;
-  nd.kind = NodeKind::Particle2D;
-  nd.q0 = k.vec2("position");
-  nd.v0 = k.vec2("velocity");
-  const int id = it.model.add_node(nd);
-  if (m > 0.0) it.model.add_element(std::make_unique<PointMass>(it.name, id, it.model.node(id), m, it.sb.gravity.head<2>()));
-}
-
-void read_line_particle_2d(const Item& it) {
-  const Section& k = it.keys;
-  const double m = k.number("mass", 0.0);
-  Node nd;
-  nd.name = it.name;
-  nd.kind = NodeKind::LineParticle2D;
-  nd.line_origin = k.vec2("origin");
-  const Eigen::Vector2d d = k.vec2("direction");
-  if (d.norm() == 0.0) it.rd.fail(k.node("direction"), it.at("direction"), "expected a non-zero direction");
-  nd.line_direction = d.normalized();
-  const Eigen::Vector2d p = k.vec2("position");
-  const Eigen::Vector2d rel = p - nd.line_origin;
-  const double s = rel.dot(nd.line_direction);
-  if ((rel - s * nd.line_direction).norm() > 1e-9 * std::max(1.0, rel.norm()))
-    it.rd.fail(k.node("position"), it.at("position"), "the point is not on the line through `origin` along `direction`");
-  nd.q0 = Eigen::VectorXd::Constant(1, s);
-  nd.v0 = Eigen::VectorXd::Constant(1, k.number("velocity", 0.0));
-  const int id = it.model.add_node(nd);
-  if (m > 0.0) it.model.add_element(std::make_unique<PointMass>(it.name, id, it.model.node(id), m, it.sb.gravity.head<2>()));
-}
-
-// ---- Planar joints ------------------------------------------------------------------------------
-
-/// body1/point1, body2/point2 or location: the keys shared by revolute, point_on_line, prismatic.
-std::vector<Key> two_point_keys() {
-  return {{"body1", KeyType::Text, "–", kRequired, "the first body; not `ground`"},
-          {"point1", KeyType::Vec2, "m", "[0, 0]", "point of body1, body frame relative to its centre of mass"},
-          {"body2", KeyType::Text, "–", "`ground`", "the second body or `ground`; different from body1"},
-          {"point2", KeyType::Vec2, "m", "[0, 0]", "point of body2 in its body frame; a world point when body2 is `ground`"},
-          {"location", KeyType::Vec2, "m", "–",
-           "instead of `point1`/`point2`: the world point of the joint at t = 0, converted to point1 and point2 with the bodies' initial positions and angles"}};
-}
-
-std::vector<Key> with(std::vector<Key> keys, std::vector<Key> more) {
-  keys.insert(keys.end(), more.begin(), more.end());
-  return keys;
-}
-
-/// The two markers of a two-point joint (body2 absent: ground).
-struct TwoPoints {
-  int b1 = -1, b2 = -1;
-  std::vector<int> nodes;
-  Eigen::Vector2d s1, s2;
-};
-
-TwoPoints two_points(const Item& it, bool default_point2_coincident) {
-  const Section& k = it.keys;
-  TwoPoints tp;
-  tp.b1 = it.sb.body(it.node, "body1", it.path, false);
-  tp.b2 = k.has("body2") ? it.sb.body(it.node, "body2", it.path, true) : -1;
-  if (tp.b1 == tp.b2) it.rd.fail(k.node("body2"), it.at("body2"), "a joint needs two different bodies");
-  if (k.has("location")) {
-    if (k.has("point1") || k.has("point2")) it.rd.fail(k.node("location"), it.at("location"), "give either location or point1/point2");
-    const Eigen::Vector2d loc = k.vec2("location");
-    tp.s1 = it.sb.to_local(tp.b1, loc);
-    tp.s2 = it.sb.to_local(tp.b2, loc);
-  } else {
-    tp.s1 = k.vec2("point1");
-    const Eigen::Vector2d p1 = it.sb.initial_position(tp.b1, tp.s1);
-    tp.s2 = k.has("point2") || !default_point2_coincident ? k.vec2("point2")
-                                                          : (tp.b2 < 0 ? p1 : it.sb.to_local(tp.b2, p1));
-  }
-  tp.nodes = node_list(tp.b1, tp.b2);
-  return tp;
-}
-
-PlanarMarker marker1(const Item& it, const TwoPoints& tp) { return it.sb.marker(tp.b1, tp.s1, tp.nodes, it.node, it.at("point1")); }
-PlanarMarker marker2(const Item& it, const TwoPoints& tp) { return it.sb.marker(tp.b2, tp.s2, tp.nodes, it.node, it.at("point2")); }
-
-/// The initial relative angle θ1 − θ2 that a fixed or prismatic joint keeps.
-double relative_angle(const Model& model, const TwoPoints& tp) {
-  return model.node(tp.b1).q0[2] - (tp.b2 >= 0 ? model.node(tp.b2).q0[2] : 0.0);
-}
-
-void read_revolute_2d(const Item& it) {
-  const TwoPoints tp = two_points(it, false);
-  it.model.add_constraint(std::make_unique<RevoluteJoint2D>(it.name, tp.nodes, marker1(it, tp), marker2(it, tp)));
-}
-
-void read_fixed_point_2d(const Item& it) {
-  const Section& k = it.keys;
-  const int b1 = it.sb.body(it.node, "body", it.path, false);
-  const Eigen::Vector2d s1 = k.vec2("point");
-  const Eigen::Vector2d loc = k.has("location") ? k.vec2("location") : it.sb.initial_position(b1, s1);
-  const auto nodes = node_list(b1, -1);
-  it.model.add_constraint(std::make_unique<RevoluteJoint2D>(it.name, nodes, it.sb.marker(b1, s1, nodes, it.node, it.at("point")),
-                                                            PlanarMarker::ground(loc)));
-}
-
-void read_fixed_2d(const Item& it) {
-  const TwoPoints tp = two_points(it, true);
-  for (int b : {tp.b1, tp.b2})
-    if (b >= 0 && !it.model.node(b).has_angle())
-      it.rd.fail(it.node, it.path, "a fixed joint locks the rotation: '" + it.model.node(b).name + "' must be a rigid_body or beam node");
-  it.model.add_constraint(std::make_unique<FixedJoint2D>(it.name, tp.nodes, marker1(it, tp), marker2(it, tp), relative_angle(it.model, tp)));
-}
-
-Eigen::Vector2d joint_axis_2d(const Item& it) {
-  const Eigen::Vector2d axis = it.keys.vec2("axis");
-  if (axis.norm() == 0.0) it.rd.fail(it.keys.node("axis"), it.at("axis"), "expected a non-zero direction");
-  return axis;
-}
-
-void read_point_on_line_2d(const Item& it) {
-  const TwoPoints tp = two_points(it, false);
-  const PlanarMarker m1 = marker1(it, tp), m2 = marker2(it, tp);
-  it.model.add_constraint(std::make_unique<PointOnLineJoint2D>(it.name, tp.nodes, m1, m2, joint_axis_2d(it)));
-}
-
-void read_prismatic_2d(const Item& it) {
-  const TwoPoints tp = two_points(it, false);
-  const PlanarMarker m1 = marker1(it, tp), m2 = marker2(it, tp);
-  const Eigen::Vector2d axis = joint_axis_2d(it);
-  if (!it.model.node(tp.b1).has_angle())
-    it.rd.fail(it.node["body1"], it.at("body1"), "a prismatic joint fixes the relative rotation: body1 must be a rigid_body");
-  if (tp.b2 >= 0 && !it.model.node(tp.b2).has_angle())
-    it.rd.fail(it.node["body2"], it.at("body2"), "a prismatic joint fixes the relative rotation: body2 must be a rigid_body or ground");
-  it.model.add_constraint(std::make_unique<PrismaticJoint2D>(it.name, tp.nodes, m1, m2, axis, relative_angle(it.model, tp)));
-}
-
-// ---- Planar forces ------------------------------------------------------------------------------
-
-void read_spring_damper_2d(const Item& it) {
-  const Section& k = it.keys;
-  const int b1 = it.sb.body(it.node, "body1", it.path, true);
-  const int b2 = k.has("body2") ? it.sb.body(it.node, "body2", it.path, true) : -1;
-  if (b1 == b2) it.rd.fail(k.node("body2"), it.at("body2"), "a spring needs two different bodies (or one body and ground)");
-  const Eigen::Vector2d s1 = k.vec2("point1"), s2 = k.vec2("point2");
-  const auto nodes = node_list(b1, b2);
-  const PlanarMarker m1 = it.sb.marker(b1, s1, nodes, it.node, it.at("point1"));
-  const PlanarMarker m2 = it.sb.marker(b2, s2, nodes, it.node, it.at("point2"));
-  const double stiffness = k.number("stiffness"), damping = k.number("damping", 0.0);
-  std::optional<Eigen::Vector2d> axis;
-  if (k.has("direction")) {
-    const Eigen::Vector2d d = k.vec2("direction");
-    if (d.norm() == 0.0) it.rd.fail(k.node("direction"), it.at("direction"), "expected a non-zero direction");
-    axis = d.normalized();
-  }
-  const Eigen::Vector2d d0 = it.sb.initial_position(b1, s1) - it.sb.initial_position(b2, s2);
-  const double initial = axis ? axis->dot(d0) : d0.norm();
-  double l0 = initial;
-  if (k.has("rest_length")) {
-    l0 = k.number("rest_length");
-    if (!axis && l0 < 0.0) it.rd.fail(k.node("rest_length"), it.at("rest_length"), "expected a non-negative length (m)");
-  }
-  if (!axis && initial < 1e-12)
-    it.rd.fail(it.node, it.path, "the two points coincide at t = 0, so a point-to-point spring has no direction; "
-                                 "give `direction` for a spring along a fixed axis");
-  it.model.add_element(std::make_unique<SpringDamper2D>(it.name, nodes, m1, m2, stiffness, damping, l0, axis));
-}
-
-void read_force_2d(const Item& it) {
-  const int b = it.sb.body(it.node, "body", it.path, false);
-  const Eigen::Vector2d s = it.keys.vec2("point");
-  const YAML::Node v = it.keys.node("value");
-  if (!v.IsSequence() || v.size() != 2) it.rd.fail(v, it.at("value"), "expected [fx, fy], each a number or a time function (N)");
-  it.model.add_element(std::make_unique<PointForce2D>(it.name, b, it.sb.marker(b, s, {b}, it.node, it.at("point")),
-                                                      it.rd.function(v[0], it.at("value[0]")), it.rd.function(v[1], it.at("value[1]"))));
-}
-
-void read_torque_2d(const Item& it) {
-  const int b = it.sb.body(it.node, "body", it.path, false);
-  if (!it.model.node(b).has_angle()) it.rd.fail(it.node["body"], it.at("body"), "a torque needs a rigid_body (a particle has no rotation)");
-  it.model.add_element(std::make_unique<Torque2D>(it.name, b, it.keys.function("value")));
-}
-
-// ---- Planar sensors -----------------------------------------------------------------------------
-
-int rigid_2d(const Item& it, const char* key) {
-  const int b = it.sb.body(it.node, key, it.path, false);
-  if (!it.model.node(b).has_angle()) it.rd.fail(it.node[key], it.at(key), "expected a rigid_body (it has no angle)");
-  return b;
-}
-
-void read_body_angle_2d(const Item& it, Sensor& sn) {
-  sn.kind = Sensor::Kind::BodyAngle;
-  sn.node = rigid_2d(it, "body");
-}
-
-void read_relative_angle_2d(const Item& it, Sensor& sn) {
-  sn.kind = Sensor::Kind::RelativeAngle;
-  sn.node = rigid_2d(it, "body");
-  sn.node2 = rigid_2d(it, "relative_to");
-}
-
-void read_point_sensor_2d(const Item& it, Sensor& sn, Sensor::Kind kind) {
-  sn.kind = kind;
-  sn.node = it.sb.body(it.node, "body", it.path, false);
-  const Eigen::Vector2d local = it.keys.vec2("point");
-  sn.local = Eigen::Vector3d(local.x(), local.y(), 0.0);
-  it.sb.marker(sn.node, local, {sn.node}, it.node, it.at("point"));
-  sn.component = it.keys.choice("component");
-  const Eigen::Vector2d p0 = it.sb.initial_position(sn.node, local);
-  sn.initial = Eigen::Vector3d(p0.x(), p0.y(), 0.0);
-}
-
-void read_joint_reaction_2d(const Item& it, Sensor& sn) {
-  sn.kind = Sensor::Kind::JointReaction;
-  sn.constraint = scene_detail::sensor_joint(it);
-  sn.component = it.keys.choice("component");
-  if (sn.component == 2) sn.component = 5;  // mz: the sixth component of a reaction
-}
-
 }  // namespace
 
 namespace scene_detail {
 
-int sensor_joint(const Item& it) {
-  const std::string jn = it.keys.text("joint");
-  const int c = it.model.find_constraint(jn);
-  if (c < 0) it.rd.fail(it.node["joint"], it.at("joint"), "no joint named '" + jn + "'");
-  return c;
-}
-
-Schema type_schema(const std::string& name, const std::string& type_doc, std::vector<Key> keys) {
-  keys.insert(keys.begin(), {{"name", KeyType::Text, "–", kRequired, "unique in its list"},
-                             {"type", KeyType::Text, "–", kRequired, type_doc}});
-  return Schema{name, std::move(keys)};
-}
-
-const SceneTypes& planar_types() {
-  static const SceneTypes t = [] {
-    SceneTypes t{{"body type", ""}, {"joint type", ""}, {"force type", ""}, {"sensor type", ""}, "", {}};
-    const Key mass_required{"mass", KeyType::Number, "kg", kRequired, "positive (zero makes the mass matrix singular)",
-                            Range::positive(), "mass (kg); a zero mass makes the mass matrix singular"};
-    const Key mass_optional{"mass", KeyType::Number, "kg", "0", "0 = massless point (no inertia, no weight)", Range::non_negative(), "mass (kg)"};
-    const Key velocity{"velocity", KeyType::Vec2, "m/s", "[0, 0]", "velocity at t = 0"};
-    t.bodies.add("rigid_body", type_schema("bodies.2d.rigid_body", "`rigid_body`: x, y, θ of the centre of mass", {
-        mass_required,
-        {"inertia", KeyType::Number, "kg·m²", kRequired, "moment of inertia about the centre of mass", Range::positive(),
-         "moment of inertia about the centre of mass (kg m^2); zero makes the mass matrix singular"},
-        {"position", KeyType::Vec2, "m", kRequired, "world position of the centre of mass at t = 0"},
-        {"angle", KeyType::Number, "rad", "0", "angle of the body frame at t = 0"},
-        velocity,
-        {"angular_velocity", KeyType::Number, "rad/s", "0", "at t = 0, counter-clockwise positive"}}), read_rigid_body_2d);
-    t.bodies.add("particle", type_schema("bodies.2d.particle", "`particle`: x, y", {
-        mass_optional, {"position", KeyType::Vec2, "m", kRequired, "world position at t = 0"}, velocity}), read_particle_2d);
-    t.bodies.add("line_particle", type_schema("bodies.2d.line_particle", "`line_particle`: s along a fixed line", {
-        mass_optional,
-        {"origin", KeyType::Vec2, "m", "[0, 0]", "a world point of the line (s = 0)"},
-        {"direction", KeyType::Vec2, "–", kRequired, "direction of the line (normalized by the program); non-zero"},
-        {"position", KeyType::Vec2, "m", kRequired, "world position at t = 0; on the line (to 1e-9·max(1, distance from origin))"},
-        {"velocity", KeyType::Number, "m/s", "0", "speed along `direction` at t = 0 (a number, not a vector)"}}), read_line_particle_2d);
-
-    const Key axis{"axis", KeyType::Vec2, "–", kRequired, "direction in body2's frame (world when body2 is `ground`, a particle or a line particle); non-zero"};
-    t.joints.add("revolute", type_schema("joints.2d.revolute", "`revolute`: pin, 2 equations", two_point_keys()), read_revolute_2d);
-    t.joints.add("fixed_point", type_schema("joints.2d.fixed_point", "`fixed_point`: a body point pinned to the world, 2 equations", {
-        {"body", KeyType::Text, "–", kRequired, "a body; not `ground`"},
-        {"point", KeyType::Vec2, "m", "[0, 0]", "point of the body, body frame relative to its centre of mass"},
-        {"location", KeyType::Vec2, "m", "the point's world position at t = 0", "world point it is pinned to"}}), read_fixed_point_2d);
-    t.joints.add("fixed", type_schema("joints.2d.fixed", "`fixed`: clamp or weld, 3 equations; point2 defaults to the point of body2 at point1", two_point_keys()), read_fixed_2d);
-    t.joints.add("point_on_line", type_schema("joints.2d.point_on_line", "`point_on_line`: point 1 on the line through point 2 along `axis`, 1 equation",
-                                              with(two_point_keys(), {axis})), read_point_on_line_2d);
-    t.joints.add("prismatic", type_schema("joints.2d.prismatic", "`prismatic`: slider, 2 equations", with(two_point_keys(), {axis})), read_prismatic_2d);
-
-    t.loads.add("spring_damper", type_schema("forces.2d.spring_damper", "`spring_damper`: tension T = k·(L − L0) + c·L̇", {
-        {"body1", KeyType::Text, "–", kRequired, "a body or `ground`"},
-        {"point1", KeyType::Vec2, "m", "[0, 0]", "point of body1 (body frame; world point for `ground`)"},
-        {"body2", KeyType::Text, "–", "`ground`", "a body or `ground`; different from body1"},
-        {"point2", KeyType::Vec2, "m", "[0, 0]", "point of body2 (body frame; world point for `ground`)"},
-        {"stiffness", KeyType::Number, "N/m", kRequired, "k", Range::non_negative(), "stiffness (N/m)"},
-        {"damping", KeyType::Number, "N·s/m", "0", "c", Range::non_negative(), "damping (N s/m)"},
-        {"rest_length", KeyType::Number, "m", "the length L at t = 0", "L0; ≥ 0 for a point-to-point spring, any sign with `direction`"},
-        {"direction", KeyType::Vec2, "–", "none", "a spring along this fixed world direction d (normalized), L = d·(r1 − r2); non-zero"}}),
-                  read_spring_damper_2d);
-    t.loads.add("force", type_schema("forces.2d.force", "`force`: a force at a body point", {
-        {"body", KeyType::Text, "–", kRequired, "a body; not `ground`"},
-        {"point", KeyType::Vec2, "m", "[0, 0]", "point of application, body frame relative to the centre of mass"},
-        {"value", KeyType::List, "N", kRequired, "world components [fx, fy], each a number or a time function", {}, "", "[fx, fy]"}}), read_force_2d);
-    t.loads.add("torque", type_schema("forces.2d.torque", "`torque`: a torque on a rigid body", {
-        {"body", KeyType::Text, "–", kRequired, "a `rigid_body`"},
-        {"value", KeyType::Function, "N·m", kRequired, "counter-clockwise positive"}}), read_torque_2d);
-
-    const Key body{"body", KeyType::Text, "–", kRequired, "a body; not `ground`"};
-    const Key point{"point", KeyType::Vec2, "m", "[0, 0]", "body frame relative to the centre of mass; [0, 0] for particles"};
-    const Key xy{"component", KeyType::Choice, "–", kRequired, "world component", {}, "", "", {"x", "y"}};
-    t.sensors.add("body_angle", type_schema("sensors.2d.body_angle", "`body_angle`: θ of a `rigid_body` (rad, not wrapped)", {
-        {"body", KeyType::Text, "–", kRequired, "a `rigid_body`"}}), read_body_angle_2d);
-    t.sensors.add("relative_angle", type_schema("sensors.2d.relative_angle", "`relative_angle`: θ_body − θ_relative_to (rad)", {
-        {"body", KeyType::Text, "–", kRequired, "a `rigid_body`"},
-        {"relative_to", KeyType::Text, "–", kRequired, "a `rigid_body`"}}), read_relative_angle_2d);
-    const std::pair<const char*, Sensor::Kind> points[] = {
-        {"point_position", Sensor::Kind::PointPosition}, {"point_displacement", Sensor::Kind::PointDisplacement},
-        {"point_velocity", Sensor::Kind::PointVelocity}, {"point_acceleration", Sensor::Kind::PointAcceleration}};
-    for (const auto& [name, kind] : points)  // one schema, four quantities (m, m, m/s, m/s²)
-      t.sensors.add(name, type_schema(std::string("sensors.2d.") + name, std::string("`") + name + "` of a body point, world frame", {body, point, xy}),
-                    [kind = kind](const Item& it, Sensor& sn) { read_point_sensor_2d(it, sn, kind); });
-    t.sensors.add("joint_reaction", type_schema("sensors.2d.joint_reaction", "`joint_reaction`: what the joint exerts on its body1, world frame (N, N·m)", {
-        {"joint", KeyType::Text, "–", kRequired, "a joint of `joints`"},
-        {"component", KeyType::Choice, "–", kRequired, "force or moment component", {}, "", "", {"fx", "fy", "mz"}}}), read_joint_reaction_2d);
-    return t;
-  }();
-  return t;
-}
-
 std::vector<const Schema*> section_schemas() {
   std::vector<const Schema*> v{&top_schema(), &load_schema(), &solver_schema(), &static_schema(), &newton_schema(), &output_schema()};
-  for (const Schema* s : mesh_schemas()) v.push_back(s);
+  v.push_back(&mesh_schema());
   v.push_back(&modes_schema());
   v.push_back(&campbell_schema());
   for (const auto& s : input::time_function_schemas()) v.push_back(&s);
@@ -652,12 +310,12 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   if (rs.dimension == 2) {
     const Eigen::Vector2d gravity = rd.vec2(root, "gravity", "", Eigen::Vector2d::Zero());
     sb.gravity = Eigen::Vector3d(gravity.x(), gravity.y(), 0.0);
-    scene_detail::read_planar_mesh_and_beams(rd, root, *scene.model, gravity);
   } else {
     sb.gravity = rd.vec3(root, "gravity", "", Eigen::Vector3d::Zero());
-    scene_detail::read_mesh_and_beams(rd, sb, root, *scene.model, sb.gravity);
   }
   const scene_detail::SceneTypes& types = rs.dimension == 2 ? scene_detail::planar_types() : scene_detail::spatial_types();
+  scene_detail::read_mesh_and_blocks(rd, sb, root, types, rs.dimension);
+  sb.blocks = {};  // the mesh itself is no longer needed: its groups are sb.mesh_groups
   read_bodies(rd, sb, root["bodies"], types, rs.dimension == 3);
   if (scene.model->nodes().empty())
     rd.fail(root, "bodies", rs.dimension == 2 ? "the scene has no bodies and no beams" : "the scene has no bodies, beams or shells");
@@ -715,6 +373,7 @@ std::vector<const input::Schema*> input::scene_schemas() {
     for (const auto& type : t->joints.types()) v.push_back(&type.schema);
     for (const auto& type : t->loads.types()) v.push_back(&type.schema);
     for (const auto& type : t->sensors.types()) v.push_back(&type.schema);
+    for (const auto& type : t->blocks.types()) v.push_back(&type.schema);
     v.insert(v.end(), t->parts.begin(), t->parts.end());
   }
   return v;

@@ -53,6 +53,15 @@ struct MeshGroup {
   bool shells = false;                      ///< a surface group that `shells` use
 };
 
+/// The mesh that `beams` and `shells` blocks are cut from, and the model nodes made of its nodes
+/// (shared where blocks meet).
+struct MeshBlocks {
+  MeshData mesh;
+  std::vector<int> node_of;                ///< mesh node → model node (−1: none yet)
+  std::map<int, std::string> point_name;   ///< mesh node → name of its named point
+  std::set<std::string> groups_used;       ///< groups a block uses (one block per group)
+};
+
 class SceneBuilder {
  public:
   SceneBuilder(Reader& rd, Model& model) : rd_(rd), model_(model) {}
@@ -60,11 +69,15 @@ class SceneBuilder {
   std::map<std::string, NamedMarker> markers;  ///< 3D body markers by name
   std::string mesh_file;                       ///< the scene's mesh, for messages
   std::map<std::string, MeshGroup> mesh_groups;  ///< the mesh's physical groups by name
+  MeshBlocks blocks;                           ///< while `beams` and `shells` are read
 
-  /// The mesh group named by `n`, all of whose nodes are model nodes; clear errors otherwise.
-  const MeshGroup& mesh_group(const YAML::Node& n, const std::string& key, int dim = -1) {
-    const std::string name = rd_.text(n, key);
-    if (mesh_groups.empty()) rd_.fail(n, key, "the scene has no `mesh` whose groups could be named");
+  /// The mesh group named by the section's key `key` (of dimension `dim`, if ≥ 0), all of whose
+  /// nodes are model nodes; clear errors otherwise.
+  const MeshGroup& mesh_group(const Section& s, const std::string& key, int dim = -1) {
+    const YAML::Node n = s.node(key);
+    const std::string name = s.text(key);
+    const std::string at = s.key_path(key);
+    if (mesh_groups.empty()) rd_.fail(n, at, "the scene has no `mesh` whose groups could be named");
     const auto it = mesh_groups.find(name);
     const char* what[] = {"point", "curve", "surface"};
     if (it == mesh_groups.end() || (dim >= 0 && it->second.dim != dim)) {
@@ -72,29 +85,32 @@ class SceneBuilder {
       for (const auto& [g, mg] : mesh_groups)
         if (dim < 0 || mg.dim == dim) known += (known.empty() ? "" : ", ") + g;
       const std::string kind = dim >= 0 ? std::string(what[dim]) + " " : "";
-      rd_.fail(n, key, "mesh '" + mesh_file + "' has no physical " + kind + "group '" + name + "' (its " + kind +
-                           "groups: " + (known.empty() ? "none" : known) + ")" +
-                           (it != mesh_groups.end() ? " ('" + name + "' is a " + what[it->second.dim] + " group)" : ""));
+      rd_.fail(n, at, "mesh '" + mesh_file + "' has no physical " + kind + "group '" + name + "' (its " + kind +
+                          "groups: " + (known.empty() ? "none" : known) + ")" +
+                          (it != mesh_groups.end() ? " ('" + name + "' is a " + what[it->second.dim] + " group)" : ""));
     }
     for (int nd : it->second.nodes)
       if (nd < 0)
-        rd_.fail(n, key, "group '" + name + "' of mesh '" + mesh_file +
-                             "' has nodes that are on no beam or shell (nothing holds them); name a group on the beams or shells");
+        rd_.fail(n, at, "group '" + name + "' of mesh '" + mesh_file +
+                            "' has nodes that are on no beam or shell (nothing holds them); name a group on the beams or shells");
     return it->second;
   }
 
-  int body(const YAML::Node& map, const std::string& key, const std::string& path, bool ground_ok) {
-    const YAML::Node n = rd_.need(map, key, path);
-    const std::string name = rd_.text(n, path + "." + key);
+  /// The body named by the section's key `key` (−1 for `ground` where `ground_ok`); clear errors
+  /// for a missing key, an unknown body, a mesh group given as a body.
+  int body(const Section& s, const std::string& key, bool ground_ok) {
+    if (!s.has(key)) rd_.fail(s.map(), s.key_path(key), "missing (required)");
+    const YAML::Node n = s.node(key);
+    const std::string name = s.text(key);
     if (name == "ground") {
-      if (!ground_ok) rd_.fail(n, path + "." + key, "'ground' cannot be used here (expected a body)");
+      if (!ground_ok) rd_.fail(n, s.key_path(key), "'ground' cannot be used here (expected a body)");
       return -1;
     }
     const int id = model_.find_node(name);
     if (id < 0 && mesh_groups.count(name))
-      rd_.fail(n, path + "." + key, "'" + name + "' is a mesh group of " + std::to_string(mesh_groups.at(name).nodes.size()) +
-                                        " nodes, not one body: give it as `group` (a joint or load at each of its nodes)");
-    if (id < 0) rd_.fail(n, path + "." + key, "no body named '" + name + "'" + known_bodies());
+      rd_.fail(n, s.key_path(key), "'" + name + "' is a mesh group of " + std::to_string(mesh_groups.at(name).nodes.size()) +
+                                       " nodes, not one body: give it as `group` (a joint or load at each of its nodes)");
+    if (id < 0) rd_.fail(n, s.key_path(key), "no body named '" + name + "'" + known_bodies());
     return id;
   }
 
@@ -161,32 +177,34 @@ struct Item {
 /// and of sensors (they fill in the sensor, whose name is set; the reader adds it).
 using ItemBuild = std::function<void(const Item&)>;
 using SensorBuild = std::function<void(const Item&, Sensor&)>;
+/// A block of elements on a mesh group (`beams`, `shells`): the keys an item has ("name, group,
+/// section"), for messages, and the constructor of its elements (one kind of cell).
+struct BlockBuild {
+  std::string item_keys;
+  ItemBuild build;
+};
 
-/// The types a scene of one dimension can name. Each type is registered by the file that reads
-/// it, with one line: `types.joints.add("revolute", schema, read_revolute)`.
+/// The types a scene of one dimension can name: bodies, joints, loads and sensors by their `type`,
+/// element blocks by their list (`beams`, `shells`). Each type is registered by its own file of
+/// src/io/types/ (one line in register_all.cpp lists that file).
 struct SceneTypes {
   input::Registry<ItemBuild> bodies, joints, loads;
   input::Registry<SensorBuild> sensors;
+  input::Registry<BlockBuild> blocks;
   std::string body_note;  ///< added to "unknown body type" messages
-  std::vector<const Schema*> parts;  ///< schemas of maps inside the types' keys (markers, drivers)
+  std::vector<const Schema*> parts;  ///< schemas of maps inside the types' keys (markers, drivers, sections)
 };
-const SceneTypes& planar_types();   ///< scene.cpp
-const SceneTypes& spatial_types();  ///< scene_spatial.cpp
+const SceneTypes& planar_types();   ///< types/register_all.cpp
+const SceneTypes& spatial_types();  ///< types/register_all.cpp
 
-/// The joint a sensor's `joint` key names (an error naming the key otherwise).
-int sensor_joint(const Item& it);
 /// The schemas of the scene's sections (top level, solver, output, mesh, ...) and time functions.
 std::vector<const Schema*> section_schemas();
-std::vector<const Schema*> mesh_schemas();  ///< scene_mesh.cpp
+const Schema& mesh_schema();                ///< scene_mesh.cpp
 const Schema& modes_schema();               ///< scene_modes.cpp
 const Schema& campbell_schema();            ///< scene_modes.cpp (modes.campbell)
 
-/// The schema of a type: `name`, `type` and the type's own keys.
-Schema type_schema(const std::string& name, const std::string& type_doc, std::vector<Key> keys);
-
-/// Planar scenes: planar beams (x, y, θ nodes) from a mesh in the x-y plane.
-void read_planar_mesh_and_beams(Reader& rd, const YAML::Node& root, Model& model, const Eigen::Vector2d& gravity);
-/// Spatial scenes: beams and shells from the scene's mesh.
-void read_mesh_and_beams(Reader& rd, SceneBuilder& sb, const YAML::Node& root, Model& model, const Eigen::Vector3d& gravity);
+/// Reads `mesh` and the element blocks the scene's dimension registers (`beams`, `shells`): the
+/// blocks' nodes and elements, then every physical group as model nodes (sb.mesh_groups).
+void read_mesh_and_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& root, const SceneTypes& types, int dimension);
 
 }  // namespace alphaflex::scene_detail

@@ -43,6 +43,9 @@ std::string Key::type_text() const {
       return "one of " + l;
     }
     case KeyType::Function: return "number or time function";
+    case KeyType::Interval: return "integer or wall time";
+    case KeyType::Numbers: return range.bounded() ? "number or list of numbers, each " + range.text() : "number or list of numbers";
+    case KeyType::Texts: return "list of strings";
     case KeyType::List: return "list";
     case KeyType::Map: return "map";
   }
@@ -329,9 +332,9 @@ YAML::Node Section::node(const std::string& name) const {
   return has(name) ? map_[name] : YAML::Node(YAML::NodeType::Undefined);
 }
 
-double Section::checked(const Key& k, const YAML::Node& n, double v) const {
+double Section::checked(const Key& k, const YAML::Node& n, double v, const std::string& at) const {
   if (k.range.contains(v)) return v;
-  const std::string key = key_path(k.name), got = ", got " + n.Scalar();
+  const std::string key = at.empty() ? key_path(k.name) : at, got = ", got " + n.Scalar();
   const std::string noun = k.noun.empty() ? "value" + std::string(k.unit == "–" ? "" : " (" + k.unit + ")") : k.noun;
   if (k.range.lo == 0.0 && !std::isfinite(k.range.hi))
     rd_.fail(n, key, std::string("expected a ") + (k.range.lo_open ? "positive " : "non-negative ") + noun + got);
@@ -370,6 +373,10 @@ Eigen::Vector3d Section::vec3(const std::string& name, const Eigen::Vector3d& fa
   return value<Eigen::Vector3d>(name, KeyType::Vec3, fallback, &Reader::vec3);
 }
 
+Eigen::Vector3d Section::direction(const std::string& name, const Eigen::Vector3d& fallback) const {
+  return value<Eigen::Vector3d>(name, KeyType::Vec3, fallback, &Reader::direction);
+}
+
 int Section::choice(const std::string& name, int fallback) const {
   const Key& k = key(name, KeyType::Choice);
   const YAML::Node n = node(name);
@@ -380,6 +387,59 @@ TimeFunctionPtr Section::function(const std::string& name) const {
   key(name, KeyType::Function);
   const YAML::Node n = node(name);
   return n.IsDefined() ? rd_.function(n, key_path(name)) : nullptr;
+}
+
+Section::Interval Section::interval(const std::string& name) const {
+  const Key& k = key(name, KeyType::Interval);
+  Interval out;
+  const YAML::Node n = node(name);
+  if (!n.IsDefined()) return out;
+  // A whole number of steps, or a wall time with its unit: "600 s", "10 min", "2 h".
+  const std::string expected = "expected a number of steps (an integer >= " + number_text(k.range.lo) +
+                               ") or a wall time with its unit, e.g. \"600 s\", \"10 min\", \"2 h\"";
+  std::istringstream in(n.IsScalar() ? n.Scalar() : std::string());
+  double value = 0.0;
+  std::string unit, rest;
+  in >> value >> unit;
+  if (!unit.empty()) {
+    in >> rest;
+    if (!(value > 0.0) || !rest.empty() || (unit != "s" && unit != "min" && unit != "h")) rd_.fail(n, key_path(name), expected);
+    out.seconds = value * (unit == "s" ? 1.0 : unit == "min" ? 60.0 : 3600.0);
+    return out;
+  }
+  if (!n.IsScalar()) rd_.fail(n, key_path(name), expected);
+  const int hi = std::isfinite(k.range.hi) ? static_cast<int>(k.range.hi) : 1000000000;
+  out.steps = rd_.integer(n, key_path(name), static_cast<int>(k.range.lo), hi);
+  return out;
+}
+
+std::vector<double> Section::numbers(const std::string& name) const {
+  const Key& k = key(name, KeyType::Numbers);
+  const YAML::Node n = node(name);
+  if (!n.IsDefined()) return {};
+  if (n.IsScalar()) return {checked(k, n, rd_.number(n, key_path(name)))};
+  if (!n.IsSequence() || n.size() == 0) rd_.fail(n, key_path(name), "expected a list of " + k.noun + "s, e.g. [1e-3, 5e-4]");
+  std::vector<double> v;
+  for (size_t i = 0; i < n.size(); ++i) {
+    const std::string at = key_path(name) + "[" + std::to_string(i) + "]";
+    v.push_back(checked(k, n[i], rd_.number(n[i], at), at));
+  }
+  return v;
+}
+
+std::vector<std::string> Section::texts(const std::string& name) const {
+  key(name, KeyType::Texts);
+  const YAML::Node n = node(name);
+  if (!n.IsDefined()) return {};
+  const auto nonempty = [&](const YAML::Node& x, const std::string& at) {
+    if (!x.IsScalar() || x.Scalar().empty()) rd_.fail(x, at, "expected a non-empty string");
+    return rd_.text(x, at);
+  };
+  if (n.IsScalar()) return {nonempty(n, key_path(name))};  // one string for a list of one
+  if (!n.IsSequence()) rd_.fail(n, key_path(name), "expected a list of strings");
+  std::vector<std::string> v;
+  for (size_t i = 0; i < n.size(); ++i) v.push_back(nonempty(n[i], key_path(name) + "[" + std::to_string(i) + "]"));
+  return v;
 }
 
 std::string update_key_tables(const std::string& document, const std::vector<const Schema*>& schemas,

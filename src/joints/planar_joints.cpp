@@ -16,9 +16,21 @@ Eigen::Vector3d as3(const Eigen::Vector2d& a) { return {a.x(), a.y(), 0.0}; }
 
 }  // namespace
 
+const std::vector<PlanarJointKind>& planar_joint_kinds() {
+  // Φ's rows, named as the spatial joints name theirs: "x", "y" the components of r1 − r2; n the
+  // line's normal; θ1 − θ2 the relative rotation (less its initial value).
+  static const std::vector<PlanarJointKind> kinds{
+      {"revolute", {"x", "y"}},
+      {"point_on_line", {"n·(r1 − r2)"}},
+      {"prismatic", {"n·(r1 − r2)", "θ1 − θ2"}},
+      {"fixed", {"x", "y", "θ1 − θ2"}},
+  };
+  return kinds;
+}
+
 // ---------------------------------------------------------------- revolute
 RevoluteJoint2D::RevoluteJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2)
-    : Constraint(std::move(name), std::move(nodes)), p1_(p1), p2_(p2) {}
+    : PlanarJoint(std::move(name), std::move(nodes), PlanarJointType::revolute), p1_(p1), p2_(p2) {}
 
 void RevoluteJoint2D::evaluate(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
   phi = p1_.position(q) - p2_.position(q);
@@ -47,7 +59,11 @@ JointReaction RevoluteJoint2D::reaction(const Eigen::VectorXd& q, double, const 
 // ---------------------------------------------------------------- point on line
 PointOnLineJoint2D::PointOnLineJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2,
                                        const Eigen::Vector2d& axis)
-    : Constraint(std::move(name), std::move(nodes)), p1_(p1), p2_(p2), axis_(axis.normalized()) {}
+    : PointOnLineJoint2D(std::move(name), std::move(nodes), p1, p2, axis, PlanarJointType::point_on_line) {}
+
+PointOnLineJoint2D::PointOnLineJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2,
+                                       const Eigen::Vector2d& axis, PlanarJointType type)
+    : PlanarJoint(std::move(name), std::move(nodes), type), p1_(p1), p2_(p2), axis_(axis.normalized()) {}
 
 void PointOnLineJoint2D::frame(const Eigen::VectorXd& q, Eigen::Vector2d& n, Eigen::Vector2d& t) const {
   t = rotate(p2_.angle(q), axis_);
@@ -110,7 +126,7 @@ JointReaction PointOnLineJoint2D::reaction(const Eigen::VectorXd& q, double, con
 // ---------------------------------------------------------------- prismatic
 PrismaticJoint2D::PrismaticJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2,
                                    const Eigen::Vector2d& axis, double relative_angle)
-    : PointOnLineJoint2D(std::move(name), std::move(nodes), p1, p2, axis), theta0_(relative_angle) {}
+    : PointOnLineJoint2D(std::move(name), std::move(nodes), p1, p2, axis, PlanarJointType::prismatic), theta0_(relative_angle) {}
 
 void PrismaticJoint2D::evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
   Eigen::VectorXd phi1;
@@ -149,7 +165,7 @@ JointReaction PrismaticJoint2D::reaction(const Eigen::VectorXd& q, double t, con
 // ---------------------------------------------------------------- fixed (clamp)
 FixedJoint2D::FixedJoint2D(std::string name, std::vector<int> nodes, PlanarMarker p1, PlanarMarker p2,
                            double relative_angle)
-    : Constraint(std::move(name), std::move(nodes)), p1_(p1), p2_(p2), theta0_(relative_angle) {}
+    : PlanarJoint(std::move(name), std::move(nodes), PlanarJointType::fixed), p1_(p1), p2_(p2), theta0_(relative_angle) {}
 
 void FixedJoint2D::evaluate(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
   phi.resize(3);

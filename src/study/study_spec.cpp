@@ -41,12 +41,12 @@ const Schema kStudy{"study", {
     {"mode", KeyType::Choice, "–", "`convergence`",
      "`convergence` (work–precision, convergence, cost), `oscillation` (multiplier oscillations), `blow_up` (forced unstable parameters), `fidelity` (model variants)",
      {}, "", "", {"convergence", "oscillation", "blow_up", "fidelity"}},
-    {"h", KeyType::List, "s", "**required** (one value for `fidelity`, default there: each scene's)", "step sizes; every run takes `solver.h` from here", {}, "", "number or list"},
+    {"h", KeyType::Numbers, "s", "**required** (one value for `fidelity`, default there: each scene's)", "step sizes; every run takes `solver.h` from here", Range::positive(), "step size (s)", "number or list"},
     {"t_end", KeyType::Number, "s", "the scene's `solver.t_end`", "final time of every run; the errors are measured there", Range::positive(), "final time (s)"},
     {"settings", KeyType::List, "–", "one setting: the scene's solver", "scheme settings (`study.settings`); labels unique; `fidelity` takes one"},
     {"reference", KeyType::Map, "–", "none (**required** for `convergence`)", "what the errors are measured against (`study.reference`)"},
-    {"sensors", KeyType::List, "–", "every sensor with a reference value (`convergence`), every sensor (otherwise)", "the sensors to report; each must exist in the scene", {}, "", "list of names"},
-    {"set", KeyType::List, "–", "none", "scene overrides `key=value` applied to every run (after the setting's solver keys, before the command line's `--set`)", {}, "", "list of `key=value`"},
+    {"sensors", KeyType::Texts, "–", "every sensor with a reference value (`convergence`), every sensor (otherwise)", "the sensors to report; each must exist in the scene", {}, "", "list of names"},
+    {"set", KeyType::Texts, "–", "none", "scene overrides `key=value` applied to every run (after the setting's solver keys, before the command line's `--set`)", {}, "", "list of `key=value`"},
     {"errors", KeyType::Choice, "–", "`relative`", "`relative`: |x − x_ref| / |x_ref| (absolute if x_ref = 0); `absolute`", {}, "", "", {"relative", "absolute"}},
     {"condition_number", KeyType::Flag, "–", "off", "`convergence`: the condition numbers of S_t at the last state of each run"},
     {"peers", KeyType::Map, "–", "none", "`convergence` only: other solvers on the same problem (`study.peers`)"},
@@ -65,7 +65,7 @@ const Schema kSetting{"study.settings", {
     {"gamma", KeyType::Number, "–", "the scene's", "as `solver.gamma`"},
     {"scaling", KeyType::Flag, "–", "the scene's", "`solver.scaling`"},
     {"newton", KeyType::Map, "–", "the scene's", "merged into `solver.newton`"},
-    {"set", KeyType::List, "–", "none", "further scene overrides `key=value`, applied after the study's `set` and the command line's `--set`", {}, "", "list of `key=value`"},
+    {"set", KeyType::Texts, "–", "none", "further scene overrides `key=value`, applied after the study's `set` and the command line's `--set`", {}, "", "list of `key=value`"},
     {"force", KeyType::Flag, "–", "off", "run the setting even if its parameters fail eq. 17, 18 or 20 (a study refuses them otherwise)"}}};
 const Schema kReference{"study.reference", {
     {"file", KeyType::Text, "–", "none", "a CSV of reference values (columns named like the sensors, and `t` in s), relative to the study file"},
@@ -74,12 +74,12 @@ const Schema kReference{"study.reference", {
     {"setting", KeyType::Text, "–", "the first setting", "the label of the setting the reference run uses"}}};
 const Schema kPeers{"study.peers", {
     {"problem", KeyType::Choice, "–", kRequired, "the problem the peers solve (the test set's equations)", {}, "", "", {"andrews"}},
-    {"ida", KeyType::List, "–", "none", "SUNDIALS IDA runs, one per tolerance (rtol = atol)", {}, "", "list of tolerances"},
-    {"radau", KeyType::List, "–", "none", "SciPy Radau runs, one per tolerance (rtol = atol)", {}, "", "list of tolerances"}}};
+    {"ida", KeyType::Numbers, "–", "none", "SUNDIALS IDA runs, one per tolerance (rtol = atol)", Range::positive(), "tolerance", "list of tolerances"},
+    {"radau", KeyType::Numbers, "–", "none", "SciPy Radau runs, one per tolerance (rtol = atol)", Range::positive(), "tolerance", "list of tolerances"}}};
 const Schema kVariant{"study.variants", {
     {"label", KeyType::Text, "–", kRequired, "the name in the CSV; unique; no commas or quotes"},
     {"scene", KeyType::Text, "–", "the scene on the command line", "a scene file, relative to the study file"},
-    {"set", KeyType::List, "–", "none", "scene overrides `key=value`", {}, "", "list of `key=value`"}}};
+    {"set", KeyType::Texts, "–", "none", "scene overrides `key=value`", {}, "", "list of `key=value`"}}};
 const Schema kStudyFile{"study.file", {{"study", KeyType::Map, "–", kRequired, "the study map"}}};
 
 /// A non-empty string (labels, names, paths).
@@ -87,26 +87,28 @@ std::string nonempty_text(const Reader& rd, const YAML::Node& n, const std::stri
   if (!n.IsScalar() || n.Scalar().empty()) rd.fail(n, key, "expected a non-empty string");
   return rd.text(n, key);
 }
-std::vector<double> positive_list(const Reader& rd, const YAML::Node& n, const std::string& key, const std::string& what) {
-  if (n.IsScalar()) return {rd.positive(n, key, what)};
-  if (!n.IsSequence() || n.size() == 0) rd.fail(n, key, "expected a list of " + what + "s, e.g. [1e-3, 5e-4]");
-  std::vector<double> v;
-  for (size_t i = 0; i < n.size(); ++i) v.push_back(rd.positive(n[i], key + "[" + std::to_string(i) + "]", what));
-  return v;
+/// Opens item i of the list `list` ("study.settings"): a map `{shape}` with a unique label (no
+/// commas, quotes or newlines: it is a CSV field); sets `key` to "LIST[LABEL]" for later messages.
+std::string labelled_item(const Reader& rd, const YAML::Node& n, const std::string& list, size_t i, const char* shape,
+                          const char* missing, const char* what, std::set<std::string>& labels, std::string& key) {
+  key = list + "[" + std::to_string(i) + "]";
+  if (!n.IsMap()) rd.fail(n, key, std::string("expected a map ") + shape);
+  if (!n["label"]) rd.fail(n, key + ".label", missing);
+  const std::string label = nonempty_text(rd, n["label"], key + ".label");
+  key = list + "[" + label + "]";
+  if (label.find_first_of(",\"\n") != std::string::npos)
+    rd.fail(n["label"], key + ".label", "a label may not contain commas, quotes or newlines (it is a CSV field)");
+  if (!labels.insert(label).second) rd.fail(n["label"], key + ".label", std::string("another ") + what + " has this label");
+  return label;
 }
-std::vector<std::string> text_list(const Reader& rd, const YAML::Node& n, const std::string& key) {
-  if (n.IsScalar()) return {nonempty_text(rd, n, key)};
-  if (!n.IsSequence()) rd.fail(n, key, "expected a list of strings");
-  std::vector<std::string> v;
-  for (size_t i = 0; i < n.size(); ++i) v.push_back(nonempty_text(rd, n[i], key + "[" + std::to_string(i) + "]"));
-  return v;
-}
+
 /// `set:` entries: "key.path=value" strings, as --set takes them.
-std::vector<std::string> assignments(const Reader& rd, const YAML::Node& n, const std::string& key) {
-  std::vector<std::string> v = text_list(rd, n, key);
+std::vector<std::string> assignments(const Reader& rd, const Section& section, const std::string& key) {
+  std::vector<std::string> v = section.texts(key);
+  const YAML::Node n = section.node(key);
   for (size_t i = 0; i < v.size(); ++i)
     if (v[i].find('=') == std::string::npos || v[i].front() == '=')
-      rd.fail(n.IsSequence() ? n[i] : n, key, "expected key.path=value (as for --set), got '" + v[i] + "'");
+      rd.fail(n.IsSequence() ? n[i] : n, section.key_path(key), "expected key.path=value (as for --set), got '" + v[i] + "'");
   return v;
 }
 /// A path relative to the directory of the file being read.
@@ -182,7 +184,7 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
   spec.name = study.has("name") ? nonempty_text(rd, s["name"], "study.name") : default_name;
   if (spec.name.find_first_of("/\\ ") != std::string::npos)
     rd.fail(s["name"], "study.name", "expected a plain file name (no spaces or slashes)");
-  if (study.has("h")) spec.h = positive_list(rd, s["h"], "study.h", "step size (s)");
+  if (study.has("h")) spec.h = study.numbers("h");
   else if (spec.mode != StudyMode::Fidelity) rd.fail(s, "study.h", "missing: the step sizes to run (s), e.g. [1e-3, 5e-4]");
   spec.t_end = study.number("t_end", spec.t_end);
   for (double h : spec.h)
@@ -195,15 +197,10 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
     std::set<std::string> labels;
     for (size_t i = 0; i < list.size(); ++i) {
       const YAML::Node n = list[i];
-      std::string key = "study.settings[" + std::to_string(i) + "]";
-      if (!n.IsMap()) rd.fail(n, key, "expected a map {label: ..., scheme: ..., rho_inf: ...}");
-      if (!n["label"]) rd.fail(n, key + ".label", "missing (required): the name of the setting in the legend");
+      std::string key;
       SchemeSetting st;
-      st.label = nonempty_text(rd, n["label"], key + ".label");
-      key = "study.settings[" + st.label + "]";
-      if (st.label.find_first_of(",\"\n") != std::string::npos)
-        rd.fail(n["label"], key + ".label", "a label may not contain commas, quotes or newlines (it is a CSV field)");
-      if (!labels.insert(st.label).second) rd.fail(n["label"], key + ".label", "another setting has this label");
+      st.label = labelled_item(rd, n, "study.settings", i, "{label: ..., scheme: ..., rho_inf: ...}",
+                               "missing (required): the name of the setting in the legend", "setting", labels, key);
       const Section setting(rd, n, key, kSetting);
       if (n["newton"] && !n["newton"].IsMap()) rd.fail(n["newton"], key + ".newton", "expected a map (rtol, atol, atol_lambda, max_iter)");
       // The newton map goes into the scene's solver.newton, where the scene reader checks its keys
@@ -211,7 +208,7 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
       if (n["newton"])
         for (const auto& kv : n["newton"]) rd.key_name(kv.first, key + ".newton");
       st.force = setting.flag("force", st.force);
-      if (setting.has("set")) st.overrides = assignments(rd, n["set"], key + ".set");
+      if (setting.has("set")) st.overrides = assignments(rd, setting, "set");
       st.solver_override = solver_override(scene_solver, n);
       st.where = rd.where(n, key);
       spec.settings.push_back(st);
@@ -246,8 +243,8 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
   }
   if ((spec.mode == StudyMode::Convergence) && spec.reference.file.empty() && !(spec.reference.h > 0.0))
     rd.fail(s, "study.reference", "missing: a convergence study needs a reference (file with source, or a run step size h)");
-  if (study.has("sensors")) spec.sensors = text_list(rd, s["sensors"], "study.sensors");
-  if (study.has("set")) spec.overrides = assignments(rd, s["set"], "study.set");
+  if (study.has("sensors")) spec.sensors = study.texts("sensors");
+  if (study.has("set")) spec.overrides = assignments(rd, study, "set");
   spec.relative_errors = study.choice("errors", spec.relative_errors ? 0 : 1) == 0;
   spec.condition_number = study.flag("condition_number", spec.condition_number);
 
@@ -255,8 +252,8 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
     const Section peers(rd, p, "study.peers", kPeers);
     if (!p["problem"]) rd.fail(p, "study.peers.problem", "missing: the problem the peers solve (andrews)");
     spec.peers.problem = kPeers.find("problem")->choices[static_cast<size_t>(peers.choice("problem"))];
-    if (p["ida"]) spec.peers.ida = positive_list(rd, p["ida"], "study.peers.ida", "tolerance");
-    if (p["radau"]) spec.peers.radau = positive_list(rd, p["radau"], "study.peers.radau", "tolerance");
+    spec.peers.ida = peers.numbers("ida");
+    spec.peers.radau = peers.numbers("radau");
     if (spec.mode != StudyMode::Convergence) rd.fail(p, "study.peers", "peers belong to a convergence (work-precision) study");
   }
 
@@ -266,18 +263,13 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
     std::set<std::string> labels;
     for (size_t i = 0; i < v.size(); ++i) {
       const YAML::Node n = v[i];
-      std::string key = "study.variants[" + std::to_string(i) + "]";
-      if (!n.IsMap()) rd.fail(n, key, "expected a map {label: ..., scene: ..., set: [...]}");
-      if (!n["label"]) rd.fail(n, key + ".label", "missing (required)");
+      std::string key;
       ModelVariant mv;
-      mv.label = nonempty_text(rd, n["label"], key + ".label");
-      key = "study.variants[" + mv.label + "]";
-      if (mv.label.find_first_of(",\"\n") != std::string::npos)
-        rd.fail(n["label"], key + ".label", "a label may not contain commas, quotes or newlines (it is a CSV field)");
-      if (!labels.insert(mv.label).second) rd.fail(n["label"], key + ".label", "another variant has this label");
-      rd.keys(n, key, kVariant);
-      mv.scene = n["scene"] ? file_path(rd, n["scene"], key + ".scene") : scene_path;
-      if (n["set"]) mv.overrides = assignments(rd, n["set"], key + ".set");
+      mv.label = labelled_item(rd, n, "study.variants", i, "{label: ..., scene: ..., set: [...]}", "missing (required)", "variant",
+                               labels, key);
+      const Section variant(rd, n, key, kVariant);
+      mv.scene = variant.has("scene") ? file_path(rd, variant.node("scene"), variant.key_path("scene")) : scene_path;
+      if (variant.has("set")) mv.overrides = assignments(rd, variant, "set");
       mv.where = rd.where(n, key);
       spec.variants.push_back(mv);
     }

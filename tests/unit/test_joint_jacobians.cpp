@@ -583,5 +583,27 @@ TEST(FixedJoint2D, ReactionIsMinusLambdaAndSatisfiesVirtualWorkOnBody1) {
   EXPECT_EQ(r.moment, Eigen::Vector3d(0.0, 0.0, -1.5));
 }
 
+// The table of planar joint kinds names each equation of Φ: its rows must have as many names as
+// evaluate() gives equations, and the messages print them.
+TEST(PlanarJointKinds, EquationNamesMatchTheEquationsOfPhi) {
+  std::mt19937 rng(4400);
+  std::vector<JointCase> all = revolute_cases();
+  for (const auto& cases : {point_on_line_cases(), prismatic_cases(), fixed_cases()}) all.insert(all.end(), cases.begin(), cases.end());
+  for (const JointCase& c : all) {
+    SCOPED_TRACE(std::string(c.joint->type()) + ": " + c.label);
+    const Eigen::VectorXd phi = phi_of(*c.joint, random_q(rng, c));
+    ASSERT_EQ(phi.size(), c.joint->size());
+    for (int k = 0; k < c.joint->size(); ++k) EXPECT_FALSE(c.joint->equation_name(k).empty());
+  }
+  const auto names = [](PlanarJointType t) { return planar_joint_kinds()[static_cast<size_t>(t)].equations; };
+  EXPECT_EQ(names(PlanarJointType::revolute), (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(names(PlanarJointType::point_on_line), (std::vector<std::string>{"n·(r1 − r2)"}));
+  EXPECT_EQ(names(PlanarJointType::prismatic), (std::vector<std::string>{"n·(r1 − r2)", "θ1 − θ2"}));
+  EXPECT_EQ(names(PlanarJointType::fixed), (std::vector<std::string>{"x", "y", "θ1 − θ2"}));
+  EXPECT_EQ(std::string(fixed_cases()[0].joint->type()), "fixed");
+  EXPECT_EQ(fixed_cases()[0].joint->equation_label(2), "equation 3 (θ1 − θ2)");
+  EXPECT_EQ(std::string(prismatic_cases()[0].joint->type()), "prismatic");
+}
+
 }  // namespace
 }  // namespace alphaflex

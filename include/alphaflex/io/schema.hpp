@@ -32,6 +32,9 @@ enum class KeyType {
   Vec3,      ///< [x, y, z]
   Choice,    ///< one of `choices`
   Function,  ///< a number or a time function {type: ramp, ...}
+  Interval,  ///< how often: a whole number of steps, or a wall time with its unit ("600 s", "10 min", "2 h")
+  Numbers,   ///< a number or a list of numbers, each in the key's range
+  Texts,     ///< a list of strings
   List,      ///< a list (of maps or values; read by the code that owns it)
   Map,       ///< a map (a sub-section with a schema of its own, or free form)
 };
@@ -226,9 +229,21 @@ class Section {
   std::string text(const std::string& key, const std::string& fallback = "") const;
   Eigen::Vector2d vec2(const std::string& key, const Eigen::Vector2d& fallback = Eigen::Vector2d::Zero()) const;
   Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback = Eigen::Vector3d::Zero()) const;
+  /// A [x, y, z] key that is a direction: non-zero, normalized (`fallback` when absent).
+  Eigen::Vector3d direction(const std::string& key, const Eigen::Vector3d& fallback = Eigen::Vector3d::UnitX()) const;
   /// The index of the key's value among the schema's choices (`fallback` when absent).
   int choice(const std::string& key, int fallback = 0) const;
   TimeFunctionPtr function(const std::string& key) const;
+  /// An Interval key: a whole number of steps (in the key's range), or a wall time in seconds.
+  struct Interval {
+    int steps = 0;
+    double seconds = 0.0;
+  };
+  Interval interval(const std::string& key) const;
+  /// A Numbers key: one number or a non-empty list, each in the key's range.
+  std::vector<double> numbers(const std::string& key) const;
+  /// A Texts key: a list of non-empty strings (one string reads as a list of one).
+  std::vector<std::string> texts(const std::string& key) const;
 
  private:
   const Key& key(const std::string& name, KeyType type) const;
@@ -240,7 +255,8 @@ class Section {
     const YAML::Node n = node(name);
     return n.IsDefined() ? (rd_.*read)(n, key_path(name)) : fallback;
   }
-  double checked(const Key& k, const YAML::Node& n, double v) const;
+  /// v, or an error at `at` (default: the key's path) if it is outside the key's range.
+  double checked(const Key& k, const YAML::Node& n, double v, const std::string& at = "") const;
   const Reader& rd_;
   YAML::Node map_;
   bool present_;  ///< the map is in the tree (an absent one, a zombie node, cannot even be asked its type)
@@ -272,6 +288,12 @@ class Registry {
     for (const auto& type : types_)
       if (type.name == t) return type;
     rd.fail(item["type"], path + ".type", "unknown " + what_ + " '" + t + "'" + dimension_ + " (expected " + names() + extra + ")");
+  }
+  /// The type named `name`, nullptr if none is.
+  const Type* get(const std::string& name) const {
+    for (const auto& type : types_)
+      if (type.name == name) return &type;
+    return nullptr;
   }
   std::string names() const {
     std::string l;

@@ -1,0 +1,93 @@
+// `rigid_body` (spatial): a frame on R³×SO(3) with its mass and inertia, and `markers`, named
+// frames fixed to it that joints and sensors refer to.
+#include <Eigen/Eigenvalues>
+
+#include "alphaflex/elements/spatial_elements.hpp"
+#include "common.hpp"
+
+namespace alphaflex::scene_detail {
+namespace {
+
+/// Inertia tensor: [Ixx, Iyy, Izz] (principal, body axes) or a symmetric 3×3 list of rows.
+Eigen::Matrix3d read_inertia(const Reader& rd, const YAML::Node& n, const std::string& key) {
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  if (n.IsSequence() && n.size() == 3 && n[0].IsScalar()) {
+    J.diagonal() = rd.vec3(n, key);
+  } else if (n.IsSequence() && n.size() == 3) {
+    for (int i = 0; i < 3; ++i) J.row(i) = rd.vec3(n[i], key + "[" + std::to_string(i) + "]").transpose();
+    if ((J - J.transpose()).norm() > 1e-12 * J.norm()) rd.fail(n, key, "the inertia tensor must be symmetric");
+  } else {
+    rd.fail(n, key, "expected [Ixx, Iyy, Izz] or a 3x3 list of rows (kg m^2, body frame, about the centre of mass)");
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(J);
+  const Eigen::Vector3d e = es.eigenvalues();
+  if (!(e.minCoeff() > 0.0)) rd.fail(n, key, "the inertia tensor must be positive definite (a zero makes the mass matrix singular)");
+  // Triangle inequality of principal moments (a physical mass distribution).
+  if (e[0] + e[1] < e[2] * (1.0 - 1e-12)) rd.fail(n, key, "principal moments violate I1 + I2 >= I3: no body has this inertia");
+  return J;
+}
+
+const Schema& marker_schema() {
+  static const Schema s{"bodies.3d.markers", {
+      {"name", KeyType::Text, "–", kRequired, "unique in the scene (among markers, bodies and mesh points)"},
+      {"position", KeyType::Vec3, "m", kRequired, "origin of the marker in the body frame"},
+      {"orientation", KeyType::Map, "rad", "identity", "rotation of the marker frame in the body frame", {}, "", "rotation"}}};
+  return s;
+}
+
+void read_rigid_body_3d(const Item& it) {
+  Reader& rd = it.rd;
+  const Section& k = it.keys;
+  const double m = k.number("mass");
+  const Eigen::Matrix3d J = read_inertia(rd, k.node("inertia"), it.at("inertia"));
+  const Eigen::Vector3d x = k.vec3("position");
+  const Eigen::Matrix3d R = k.has("orientation") ? read_orientation(rd, k.node("orientation"), it.at("orientation"))
+                                                 : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d v = k.vec3("velocity"), w = k.vec3("angular_velocity");  // w: world frame
+  Node nd;
+  nd.name = it.name;
+  nd.kind = NodeKind::Frame3D;
+  nd.q0.resize(7);
+  store_pose(x, R, nd.q0.data());
+  nd.v0.resize(6);
+  nd.v0 << v, R.transpose() * w;  // Ω in the body frame
+  const int id = it.model.add_node(nd);
+  it.model.add_element(std::make_unique<RigidBody3D>(it.name, id, m, J, it.sb.gravity));
+  // Markers: named frames fixed to the body (position and orientation in the body frame), for
+  // joints (marker1/marker2) and point sensors (marker).
+  if (const YAML::Node ml = k.node("markers")) {
+    if (!ml.IsSequence()) rd.fail(ml, it.at("markers"), "expected a list of {name, position, orientation}");
+    for (size_t i = 0; i < ml.size(); ++i) {
+      const YAML::Node mk = ml[i];
+      const std::string mp = it.at("markers[" + std::to_string(i) + "]");
+      if (!mk.IsMap()) rd.fail(mk, mp, "expected a map {name, position, orientation}");
+      const Section ms(rd, mk, mp, marker_schema());
+      const std::string mname = ms.text("name");
+      if (it.sb.markers.count(mname) || it.model.find_node(mname) >= 0)
+        rd.fail(mk["name"], mp + ".name", "the name '" + mname + "' is taken (marker names are unique in a scene)");
+      NamedMarker nm;
+      nm.node = id;
+      nm.position = ms.vec3("position");
+      if (ms.has("orientation")) nm.rotation = read_orientation(rd, ms.node("orientation"), mp + ".orientation");
+      it.sb.markers[mname] = nm;
+    }
+  }
+}
+
+}  // namespace
+
+void register_rigid_body_3d(SceneTypes& t) {
+  t.bodies.add("rigid_body", type_schema("bodies.3d.rigid_body", "`rigid_body`: a frame on R³×SO(3)", {
+      {"mass", KeyType::Number, "kg", kRequired, "positive", Range::positive(), "mass (kg); a zero mass makes the mass matrix singular"},
+      {"inertia", KeyType::List, "kg·m²", kRequired, "about the centre of mass in the body frame; symmetric positive definite with I1 + I2 ≥ I3",
+       {}, "", "[Ixx, Iyy, Izz] or 3×3 list of rows"},
+      {"position", KeyType::Vec3, "m", kRequired, "centre of mass at t = 0"},
+      {"orientation", KeyType::Map, "rad", "identity", "body frame at t = 0: a rotation vector [rx, ry, rz] or {axis, angle}", {}, "", "rotation"},
+      {"velocity", KeyType::Vec3, "m/s", "[0, 0, 0]", "velocity of the centre of mass at t = 0"},
+      {"angular_velocity", KeyType::Vec3, "rad/s", "[0, 0, 0]", "world components at t = 0"},
+      {"markers", KeyType::List, "m, rad", "none", "frames fixed to the body, `{name, position, orientation}` in the body frame"}}),
+              read_rigid_body_3d);
+  t.parts.push_back(&marker_schema());
+}
+
+}  // namespace alphaflex::scene_detail

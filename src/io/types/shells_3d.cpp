@@ -1,0 +1,165 @@
+// `shells` (spatial): a block of Reissner–Mindlin shells (MITC4 quadrilaterals, MITC3 triangles)
+// on a physical surface group of the mesh, isotropic (thickness and material) or a laminate.
+#include <sstream>
+
+#include "alphaflex/elements/shell.hpp"
+#include "common.hpp"
+
+namespace alphaflex::scene_detail {
+namespace {
+
+const Schema& material_schema() {
+  static const Schema s{"shells.material", {
+      {"E", KeyType::Number, "Pa", kRequired, "Young's modulus", Range::positive(), "Young's modulus (Pa)"},
+      {"nu", KeyType::Number, "–", kRequired, "Poisson's ratio; −1 < ν < 0.5"},
+      {"rho", KeyType::Number, "kg/m³", kRequired, "density; ≥ 0"}}};
+  return s;
+}
+
+const Schema& laminate_schema() {
+  static const Schema s{"shells.section", {
+      {"A", KeyType::List, "N/m", kRequired, "membrane stiffness, 3×3 rows, Voigt order (11, 22, 12)", {}, "", "3×3 list of rows"},
+      {"B", KeyType::List, "N", "zero", "membrane–bending coupling, 3×3 rows", {}, "", "3×3 list of rows"},
+      {"D", KeyType::List, "N·m", kRequired, "bending stiffness, 3×3 rows", {}, "", "3×3 list of rows"},
+      {"As", KeyType::List, "N/m", kRequired, "transverse shear stiffness, 2×2 rows", {}, "", "2×2 list of rows"},
+      {"thickness", KeyType::Number, "m", kRequired, "laminate thickness", Range::positive(), "thickness (m)"},
+      {"mass", KeyType::Number, "kg/m²", kRequired, "mass per area"},
+      {"rotary", KeyType::Number, "kg", kRequired, "rotary inertia per area"}}};
+  return s;
+}
+
+/// The shell section: `thickness` and `material: {E, nu, rho}`, or a laminate
+/// `section: {A, B, D, As, thickness, mass, rotary}` (matrices as nested lists).
+ShellSection read_shell_section(const Item& it) {
+  const Reader& rd = it.rd;
+  const Section& k = it.keys;
+  auto matrix = [&](const YAML::Node& n, const std::string& key, int size, const char* unit) {
+    Eigen::MatrixXd M(size, size);
+    if (!n || !n.IsSequence() || static_cast<int>(n.size()) != size)
+      rd.fail(n, key, "expected a " + std::to_string(size) + "x" + std::to_string(size) + " matrix as a list of rows (" + unit + ")");
+    for (int r = 0; r < size; ++r) {
+      const YAML::Node row = n[static_cast<size_t>(r)];
+      if (!row.IsSequence() || static_cast<int>(row.size()) != size)
+        rd.fail(row, key, "row " + std::to_string(r + 1) + ": expected " + std::to_string(size) + " numbers");
+      for (int c = 0; c < size; ++c) M(r, c) = rd.number(row[static_cast<size_t>(c)], key + "[" + std::to_string(r) + "][" + std::to_string(c) + "]");
+    }
+    return M;
+  };
+  try {
+    if (k.has("section")) {
+      const YAML::Node sec = k.node("section");
+      if (k.has("material") || k.has("thickness"))
+        rd.fail(sec, it.at("section"), "give either thickness and material, or a laminate section (with its own thickness)");
+      const std::string key = it.at("section");
+      if (!sec.IsMap()) rd.fail(sec, key, "expected a map {A, B, D, As, thickness, mass, rotary}");
+      const Section laminate(rd, sec, key, laminate_schema());
+      const Eigen::Matrix3d A = matrix(laminate.node("A"), key + ".A", 3, "N/m");
+      const Eigen::Matrix3d B = laminate.has("B") ? Eigen::Matrix3d(matrix(laminate.node("B"), key + ".B", 3, "N")) : Eigen::Matrix3d::Zero();
+      const Eigen::Matrix3d D = matrix(laminate.node("D"), key + ".D", 3, "N m");
+      const Eigen::Matrix2d As = matrix(laminate.node("As"), key + ".As", 2, "N/m");
+      const double t = laminate.number("thickness"), mass = laminate.number("mass"), rotary = laminate.number("rotary");
+      return ShellSection::laminate(A, B, D, As, t, mass, rotary);
+    }
+    auto need = [&](const char* key) {  // required unless `section`
+      if (!k.has(key)) rd.fail(it.node, it.at(key), "missing (required)");
+    };
+    need("thickness");
+    const double t = k.number("thickness");
+    need("material");
+    const YAML::Node m = k.node("material");
+    if (!m.IsMap()) rd.fail(m, it.at("material"), "expected a map {E, nu, rho}");
+    const Section material(rd, m, it.at("material"), material_schema());
+    const double E = material.number("E"), nu = material.number("nu"), rho = material.number("rho");
+    return ShellSection::isotropic(E, nu, rho, t);
+  } catch (const std::invalid_argument& e) {
+    rd.fail(k.has("section") ? k.node("section") : k.has("material") ? k.node("material") : it.node, it.path, e.what());
+  }
+}
+
+/// The mesh's surface block named by the item's `group` (then used: one block per group).
+const MeshSurfaceBlock& surface_group(const Item& it) {
+  const MeshData& mesh = it.sb.blocks.mesh;
+  const std::string group = it.keys.text("group");
+  const MeshSurfaceBlock* block = mesh.find_surface_block(group);
+  if (!block) {
+    std::string known;
+    for (const auto& b : mesh.surface_blocks) known += (known.empty() ? "" : ", ") + b.name;
+    it.rd.fail(it.keys.node("group"), it.at("group"), "mesh '" + mesh.file + "' has no physical surface group '" + group +
+                                                          "' (its surface groups: " + (known.empty() ? "none" : known) + ")");
+  }
+  if (!it.sb.blocks.groups_used.insert(group).second)
+    it.rd.fail(it.keys.node("group"), it.at("group"), "group '" + group + "' is used by another beam or shell already");
+  return *block;
+}
+
+void read_shell_block(const Item& it) {
+  constexpr double kPi = 3.14159265358979323846;
+  const Section& k = it.keys;
+  const MeshSurfaceBlock& block = surface_group(it);
+  const ShellSection section = read_shell_section(it);
+  ShellOptions options;
+  options.drilling_factor = k.number("drilling", options.drilling_factor);
+  const double kink = k.number("kink_angle", 20.0);
+  const bool axis_given = k.has("material_axis");
+  const Eigen::Vector3d axis = k.direction("material_axis", Eigen::Vector3d::UnitX());
+  const MeshData& mesh = it.sb.blocks.mesh;
+  std::vector<std::vector<Eigen::Vector3d>> dirs;
+  try {
+    dirs = shell_directors(mesh.points, block.elements, kink * kPi / 180.0);
+  } catch (const std::invalid_argument& e) {
+    it.rd.fail(k.node("group"), it.at("group"), e.what());
+  }
+  for (size_t e = 0; e < block.elements.size(); ++e) {
+    std::vector<int> nodes;
+    for (int m : block.elements[e]) {
+      Eigen::VectorXd q0(7);
+      store_pose(mesh.points[static_cast<size_t>(m)], Eigen::Matrix3d::Identity(), q0.data());
+      nodes.push_back(block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6)));
+    }
+    std::vector<Pose<double>> ref;
+    for (int n : nodes) ref.push_back(pose_of(it.model.node(n).q0.data()));
+    auto make = [&](const Eigen::Vector3d& a) {
+      return std::make_unique<ReissnerMindlinShell>(it.name + "[" + std::to_string(e) + "]", nodes, section, ref, dirs[e], a,
+                                                    it.sb.gravity, options);
+    };
+    try {
+      std::unique_ptr<ReissnerMindlinShell> el;
+      try {
+        el = make(axis);
+      } catch (const std::invalid_argument&) {
+        // The default axis (x) along an element's normal: y, then z, unless the user gave one.
+        if (axis_given) throw;
+        try {
+          el = make(Eigen::Vector3d::UnitY());
+        } catch (const std::invalid_argument&) {
+          el = make(Eigen::Vector3d::UnitZ());
+        }
+      }
+      it.model.add_element(std::move(el));
+    } catch (const std::invalid_argument& ex) {
+      std::ostringstream os;
+      os << "element " << block.element_tags[e] << " of group '" << block.name << "': " << ex.what();
+      const bool axis_error = axis_given && std::string(ex.what()).find("material axis") != std::string::npos;
+      it.rd.fail(axis_error ? k.node("material_axis") : k.node("group"), it.at(axis_error ? "material_axis" : "group"), os.str());
+    }
+  }
+}
+
+}  // namespace
+
+void register_shells_3d(SceneTypes& t) {
+  t.blocks.add("shells", Schema{"shells", {
+      {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in the group's element order"},
+      {"group", KeyType::Text, "–", kRequired, "a physical surface group, used by one beam or shell block only"},
+      {"thickness", KeyType::Number, "m", "**required** (unless `section`)", "shell thickness", Range::positive(), "thickness (m)"},
+      {"material", KeyType::Map, "Pa, –, kg/m³", "**required** (unless `section`)", "`{E, nu, rho}`: isotropic, E > 0, −1 < ν < 0.5, ρ ≥ 0"},
+      {"section", KeyType::Map, "–", "–", "a laminate instead of `thickness` and `material` (`shells.section`)"},
+      {"material_axis", KeyType::Vec3, "–", "[1, 0, 0]", "material axis 1, projected onto each element"},
+      {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area (docs/theory/shell.md)", Range::positive(), "drilling stiffness factor (of G t)"},
+      {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there (folds, T-junctions)", Range::positive(), "angle (degrees)"}}},
+      {"name, group, thickness, material", read_shell_block});
+  t.parts.push_back(&material_schema());
+  t.parts.push_back(&laminate_schema());
+}
+
+}  // namespace alphaflex::scene_detail
