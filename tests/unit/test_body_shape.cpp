@@ -161,12 +161,6 @@ TEST(BodyShapeScene, BadShapesAreNamed) {
 
 // ---- surface meshes read with gmsh -----------------------------------------------------------------
 
-std::filesystem::path scratch() {
-  const auto dir = std::filesystem::temp_directory_path() / ("alphaflex_body_shape_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
 /// An ASCII STL of the unit cube [0, 1]³ (mm), 12 triangles with outward normals.
 std::string cube_stl() {
   const SurfaceMesh box = box_surface({1.0, 1.0, 1.0});
@@ -184,11 +178,10 @@ std::string cube_stl() {
 }
 
 TEST(BodyShapeScene, StlMeshIsReadScaledAndPlaced) {
-  const auto dir = scratch();
-  std::ofstream(dir / "cube.stl") << cube_stl();
+  const testing::TestOutputDir dir("body_shape_stl");
+  const std::string stl = dir.write("cube.stl", cube_stl());
   const Scene sc = read_scene_text(
-      with_shape(kBodies3d, "{type: mesh, file: " + (dir / "cube.stl").string() + ", scale: 0.001, position: [0, 0, 1]}"),
-      (dir / "scene.yaml").string());
+      with_shape(kBodies3d, "{type: mesh, file: " + stl + ", scale: 0.001, position: [0, 0, 1]}"), dir.file("scene.yaml"));
   const SurfaceMesh& s = only_shape(sc).surface;
   EXPECT_EQ(s.faces.size(), 12u);
   EXPECT_EQ(s.points.size(), 8u);  // gmsh merges the facets' repeated vertices
@@ -196,23 +189,23 @@ TEST(BodyShapeScene, StlMeshIsReadScaledAndPlaced) {
   EXPECT_NEAR(enclosed_volume(s), 1e-9, 1e-18);  // 1 mm³
   for (const auto& p : s.points) EXPECT_NEAR(p.z(), 1.0 + (p.z() > 1.0005 ? 0.001 : 0.0), 1e-9);
   // Relative to the scene file's directory.
-  const Scene rel = read_scene_text(with_shape(kBodies3d, "{type: mesh, file: cube.stl}"), (dir / "scene.yaml").string());
+  const Scene rel = read_scene_text(with_shape(kBodies3d, "{type: mesh, file: cube.stl}"), dir.file("scene.yaml"));
   EXPECT_NEAR(enclosed_volume(only_shape(rel).surface), 1.0, 1e-12);
 }
 
 TEST(BodyShapeScene, MeshWithoutSurfaceElementsIsNamed) {
-  const auto dir = scratch();
-  std::ofstream(dir / "line.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n"
-                                     "$Elements\n1\n1 1 2 1 1 1 2\n$EndElements\n";
+  const testing::TestOutputDir dir("body_shape_msh");
+  dir.write("line.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n"
+                        "$Elements\n1\n1 1 2 1 1 1 2\n$EndElements\n");
   const std::string e = testing::input_error_of([&] {
-    read_scene_text(with_shape(kBodies3d, "{type: mesh, file: line.msh}"), (dir / "scene.yaml").string());
+    read_scene_text(with_shape(kBodies3d, "{type: mesh, file: line.msh}"), dir.file("scene.yaml"));
   });
   EXPECT_NE(e.find("bodies[a].shape.file"), std::string::npos) << e;
   EXPECT_NE(e.find("line.msh"), std::string::npos) << e;
   EXPECT_NE(e.find("no surface elements"), std::string::npos) << e;
-  std::ofstream(dir / "empty.stl") << "";
+  dir.write("empty.stl", "");
   const std::string empty = testing::input_error_of([&] {
-    read_scene_text(with_shape(kBodies3d, "{type: mesh, file: empty.stl}"), (dir / "scene.yaml").string());
+    read_scene_text(with_shape(kBodies3d, "{type: mesh, file: empty.stl}"), dir.file("scene.yaml"));
   });
   EXPECT_NE(empty.find("empty.stl"), std::string::npos) << empty;
 }
