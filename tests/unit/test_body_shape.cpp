@@ -193,6 +193,22 @@ TEST(BodyShapeScene, StlMeshIsReadScaledAndPlaced) {
   EXPECT_NEAR(enclosed_volume(only_shape(rel).surface), 1.0, 1e-12);
 }
 
+TEST(BodyShapeScene, MshSurfaceIsReadWithoutPhysicalGroups) {
+  // The unit tetrahedron (0, e1, e2, e3) as 4 outward triangles of a MSH 2.2 file with no
+  // physical names: volume 1/6, area 3/2 + √3/2.
+  const testing::TestOutputDir dir("body_shape_tet");
+  dir.write("tet.msh",
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
+            "$Elements\n4\n1 2 2 0 1 1 3 2\n2 2 2 0 1 1 2 4\n3 2 2 0 1 1 4 3\n4 2 2 0 1 2 3 4\n$EndElements\n");
+  const Scene sc = read_scene_text(with_shape(kBodies3d, "{type: mesh, file: tet.msh}"), dir.file("scene.yaml"));
+  const SurfaceMesh& s = only_shape(sc).surface;
+  EXPECT_EQ(s.faces.size(), 4u);
+  EXPECT_EQ(s.points.size(), 4u);
+  EXPECT_EQ(closedness_error(s), "");
+  EXPECT_NEAR(enclosed_volume(s), 1.0 / 6.0, 1e-15);
+  EXPECT_NEAR(surface_area(s), 1.5 + std::sqrt(3.0) / 2.0, 1e-15);
+}
+
 TEST(BodyShapeScene, MeshWithoutSurfaceElementsIsNamed) {
   const testing::TestOutputDir dir("body_shape_msh");
   dir.write("line.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n"
