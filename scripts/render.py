@@ -100,7 +100,10 @@ def place_camera(view, b, mode):
     diag = math.sqrt(sum(s * s for s in size)) or 1.0
     c = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2]
     if mode == "auto":
-        mode = "xy" if size[2] <= 1e-9 * diag else "iso"
+        # Planar: flat, or only as thick as the bodies' shapes drawn about z = 0 (a box of a planar
+        # body has a thickness; its centre stays in the plane).
+        flat = size[2] <= 1e-9 * diag or (abs(c[2]) <= 1e-9 * diag and size[2] <= 0.1 * diag)
+        mode = "xy" if flat else "iso"
     direction, up = {"xy": ((0, 0, 1), (0, 1, 0)), "xz": ((0, -1, 0), (0, 0, 1)),
                      "yz": ((1, 0, 0), (0, 0, 1)), "iso": ((1.0, -1.6, 0.9), (0, 0, 1))}[mode]
     n = math.sqrt(sum(d * d for d in direction))

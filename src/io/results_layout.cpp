@@ -37,6 +37,7 @@ NodeLayout node_layout(const Model& global, const std::vector<ElementGrid>& grid
       L.links.push_back(static_cast<int>(c));
     }
   }
+  L.shapes = shape_layout(global);
   return L;
 }
 

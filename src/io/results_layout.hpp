@@ -6,6 +6,7 @@
 //  - links: per joint that holds a body, the polyline body 1's centre → the joint → body 2's
 //    centre (a ground or mesh side is the joint itself), so that a rigid mechanism shows its links
 //    without a shape;
+//  - shapes: the bodies' shapes, a surface that moves with them (results_shapes.hpp);
 //  - blocks: the beam and shell blocks (element name up to '['), each with its best-fit rigid
 //    motion removed in `elastic_displacement`.
 #include <string>
@@ -13,6 +14,7 @@
 
 #include "alphaflex/partition/subdomain.hpp"
 #include "results_mesh.hpp"
+#include "results_shapes.hpp"
 
 namespace alphaflex::io_detail {
 
@@ -23,6 +25,7 @@ struct NodeLayout {
   std::vector<int> link_row;     ///< global joint → its row among the links, −1 if none
   std::vector<int> node_block;   ///< global node → its flexible block, −1 if none
   std::vector<std::string> blocks;  ///< names of the flexible blocks
+  ShapeLayout shapes;               ///< the bodies' shapes (results_shapes.hpp)
   /// Every node is a body (no drawn element): the bodies grid reads the node datasets themselves.
   bool all_bodies() const { return bodies.size() == body_row.size(); }
 };

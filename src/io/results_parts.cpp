@@ -52,9 +52,11 @@ ResultsParts::ResultsParts(const Subdomain& sub, const std::vector<ElementGrid>&
     const int r = layout_.link_row[static_cast<size_t>(sub.global_constraint(static_cast<int>(c)))];
     if (r >= 0) link_.add(3 * static_cast<unsigned long long>(r), 3);
   }
+  shapes_.emplace(sub, layout_.shapes);
   // A first estimate of an output step's bytes: its values, and ~1 KiB of HDF5 metadata per
   // dataset (object header, the group's index); measured after each step.
-  unsigned long long values = node_.total * 26 + joint_.total * 9 + state_.conf.total + 2 * state_.dof.total + state_.mult.total;
+  unsigned long long values = node_.total * 26 + joint_.total * 9 + state_.conf.total + 2 * state_.dof.total + state_.mult.total +
+                         9 * layout_.shapes.points();  // shape points, displacement, velocity
   size_t sets = 20;
   for (size_t k = 0; k < grids.size(); ++k)
     for (const CellField& f : grids[k].fields) {
@@ -108,6 +110,7 @@ void ResultsParts::write_topology(H5Calls& h5, hid_t file) const {
     }
     write_int_rows(h5, topo, "links", link_, ids.data(), transfer_);
   }
+  shapes_->write_topology(h5, topo, transfer_);
   for (size_t k = 0; k < grids_.size(); ++k) {
     if (grids_[k].elements.empty()) continue;
     ids.clear();
@@ -281,6 +284,7 @@ void ResultsParts::write_step(const MechanicalState& s, const std::string& group
       put(set, body_, data.second, rows_of_bodies(*data.first, static_cast<size_t>(data.second)).data());
   }
   if (!layout_.links.empty()) put("link_points", link_, 3, links.data());
+  shapes_->write_step(h5, g, s, transfer_);
   // Element results (a beam's section forces and strains, a shell's resultants and stresses),
   // constant on an element: cell data, one dataset per field.
   for (size_t k = 0; k < grids_.size(); ++k) {

@@ -5,6 +5,7 @@
 // when closed, and NAME.h5, the external links into the parts. Every HDF5 call is checked: the
 // collective functions throw an OutputError on every rank if a call failed on one, the functions
 // of rank 0 alone return what failed (the caller makes the ranks agree on it).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,7 @@ class ResultsParts {
   Rows node_, joint_;
   NodeLayout layout_;
   Rows body_, link_;  ///< owned body nodes (when not every node is a body); 3 points per drawn link
+  std::optional<ShapeRows> shapes_;  ///< the shapes of the owned bodies (made with layout_)
   StateRows state_;
   std::vector<Rows> cells_, connectivity_;
   std::vector<std::vector<int>> local_elements_;  ///< per grid: local element indices, in row order

@@ -95,6 +95,27 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
     }
     x << "  </Grid>\n";
   }
+  if (layout_.shapes.faces() > 0) {
+    // The bodies' shapes (results_shapes.hpp): one surface of triangles and quadrilaterals whose
+    // points move with their bodies.
+    const ShapeLayout& sh = layout_.shapes;
+    x << "  <Grid Name=\"shapes\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < steps.size(); ++s) {
+      x << "   <Grid Name=\"shapes\" GridType=\"Uniform\">\n    <Time Value=\"" << steps[s].time << "\"/>\n"
+        << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << sh.faces() << "\">\n"
+        << "      <DataItem Dimensions=\"" << sh.connectivity_size() << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+        << in_part(s) << ":/topology/shapes</DataItem>\n    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n";
+      item(s, "shape_points", sh.points(), 3);
+      x << "    </Geometry>\n";
+      for (const char* f : {"displacement", "velocity"}) {
+        x << "    <Attribute Name=\"" << f << "\" AttributeType=\"Vector\" Center=\"Node\">\n";
+        item(s, std::string("shape_") + f, sh.points(), 3);
+        x << "    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  }
   // An element grid per output step: its topology, the nodes' positions and motion as point data,
   // the elements' results as cell data. Line segments (beams) carry the node axes 2 and 3 (the
   // section axes), faces (shells) the accelerations.

@@ -1,7 +1,8 @@
 #pragma once
 // Private to the io module: the XDMF index of the results (NAME.xdmf, io/results_writer.hpp), for
 // ParaView. Temporal collections "bodies" (polyvertex, one per body node: results_layout.hpp),
-// "links" (a polyline body → joint → body per joint that holds a body), one per element grid
+// "links" (a polyline body → joint → body per joint that holds a body), "shapes" (the bodies'
+// shapes, a Mixed surface whose points move with them: results_shapes.hpp), one per element grid
 // (results_mesh.hpp: line segments or a Mixed topology of faces, the node positions of each step
 // as points, the elements' fields as cell data) and "joints" (polyvertex, one per joint); every
 // step refers to the part file that holds it. Rewritten whole at every commit: written to a

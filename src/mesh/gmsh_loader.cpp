@@ -17,12 +17,13 @@ namespace alphaflex {
 namespace {
 
 using ReadMeshEntry = void (*)(const std::string&, const MeshOptions&, const std::string&, MeshData&);
+using ReadSurfaceEntry = void (*)(const std::string&, const std::string&, SurfaceMesh&);
 
 // The module is looked for where the build put it (ALPHAFLEX_GMSH_MODULE, set by CMakeLists.txt),
 // unless ALPHAFLEX_GMSH_MODULE is set in the environment (a relocated build). Loaded once and kept
 // until the process ends: gmsh keeps static state that must not be unloaded.
-ReadMeshEntry load_reader() {
-  static ReadMeshEntry entry = nullptr;
+void* load_module() {
+  static void* module = nullptr;
   static std::string failure;
   static std::once_flag once;
   std::call_once(once, [] {
@@ -30,24 +31,35 @@ ReadMeshEntry load_reader() {
     const std::string path = env && *env ? env : ALPHAFLEX_GMSH_MODULE;
     // RTLD_LAZY: gmsh's ~70 libraries bind their functions on first call, as they did when linked
     // to the executable; RTLD_NOW would resolve every PLT entry of OpenCASCADE and FLTK up front.
-    void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
-    if (!handle) {
-      failure = "cannot load the gmsh reader module: " + std::string(dlerror());
-      return;
-    }
-    entry = reinterpret_cast<ReadMeshEntry>(dlsym(handle, "alphaflex_gmsh_read_mesh"));
-    if (!entry) failure = "the gmsh reader module " + path + " has no alphaflex_gmsh_read_mesh: " + dlerror();
+    module = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
+    if (!module) failure = "cannot load the gmsh reader module: " + std::string(dlerror());
   });
-  if (!entry) throw std::runtime_error(failure);
-  return entry;
+  if (!module) throw std::runtime_error(failure);
+  return module;
+}
+
+/// The module's function `name` (its entry points have C linkage).
+template <class Entry>
+Entry entry_point(const char* name) {
+  void* f = dlsym(load_module(), name);
+  if (!f) throw std::runtime_error(std::string("the gmsh reader module has no ") + name + ": " + dlerror());
+  return reinterpret_cast<Entry>(f);
 }
 
 }  // namespace
 
 MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context) {
   MeshData mesh;
-  load_reader()(path, options, context, mesh);
+  static const ReadMeshEntry entry = entry_point<ReadMeshEntry>("alphaflex_gmsh_read_mesh");
+  entry(path, options, context, mesh);
   return mesh;
+}
+
+SurfaceMesh read_surface_mesh(const std::string& path, const std::string& context) {
+  SurfaceMesh surface;
+  static const ReadSurfaceEntry entry = entry_point<ReadSurfaceEntry>("alphaflex_gmsh_read_surface");
+  entry(path, context, surface);
+  return surface;
 }
 
 }  // namespace alphaflex

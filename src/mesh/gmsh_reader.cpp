@@ -542,6 +542,77 @@ class Reader {
   bool is_geo_ = false;
 };
 
+/// A body's surface mesh (io: `shape: {type: mesh}`): the 3-node triangles and 4-node
+/// quadrilaterals of every surface of a .stl or .msh, physical groups or not (an STL has none).
+SurfaceMesh read_surface(const std::string& path, const std::string& context) {
+  namespace fs = std::filesystem;
+  const std::string prefix = (context.empty() ? "" : context + ": ") + "surface mesh '" + path + "': ";
+  auto fail = [&](const std::string& what) { throw InputError(prefix + what); };
+  const std::string ext = lower(fs::path(path).extension().string());
+  if (ext != ".stl" && ext != ".msh") fail("expected a surface mesh file ending in .stl or .msh");
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail("file not found");
+  if (!fs::is_regular_file(path, ec)) fail("not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("cannot be opened for reading");
+  if (ext == ".msh") {  // as Reader::check_file_and_options: never let gmsh parse a bad .msh
+    const std::string text(std::istreambuf_iterator<char>(in), {});
+    if (text.compare(0, 11, "$MeshFormat") != 0) fail("not a gmsh MSH file: expected it to start with $MeshFormat");
+    const std::string bad = msh_check::structure_error(text);
+    if (!bad.empty()) fail("not a valid MSH file (checked before gmsh reads it): " + bad);
+  } else if (fs::file_size(path, ec) == 0) {
+    fail("the file is empty");
+  }
+  std::lock_guard<std::mutex> lock(gmsh_mutex);
+  GmshSession session;
+  auto check = [&](const std::string& stage) {
+    const std::vector<std::string> errors = GmshSession::logged("Error: ");
+    if (!errors.empty()) fail("gmsh failed while " + stage + ": " + errors.front());
+  };
+  SurfaceMesh s;
+  try {
+    gmsh::open(path);
+    check("reading the file");
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> element_tags, node_tags;
+    gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, -1);
+    std::unordered_map<std::size_t, int> index;  // gmsh node tag → point, in order of first use
+    for (size_t t = 0; t < types.size(); ++t) {
+      if (types[t] != kTriangle3 && types[t] != kQuadrangle4) {
+        std::string type_name;
+        int edim = 0, order = 0, nodes = 0, primary = 0;
+        std::vector<double> local_coords;
+        gmsh::model::mesh::getElementProperties(types[t], type_name, edim, order, nodes, local_coords, primary);
+        fail("surface elements of type '" + type_name + "': expected 3-node triangles and 4-node quadrilaterals");
+      }
+      const size_t n = types[t] == kTriangle3 ? 3 : 4;
+      for (size_t e = 0; e < element_tags[t].size(); ++e) {
+        std::vector<int> face(n);
+        for (size_t c = 0; c < n; ++c)
+          face[c] = index.emplace(node_tags[t][n * e + c], static_cast<int>(index.size())).first->second;
+        s.faces.push_back(face);
+      }
+    }
+    if (s.faces.empty()) fail("no surface elements (expected 3-node triangles or 4-node quadrilaterals)");
+    std::vector<std::size_t> tags;
+    std::vector<double> xyz, parametric;
+    gmsh::model::mesh::getNodes(tags, xyz, parametric, -1, -1, true, false);
+    s.points.assign(index.size(), Eigen::Vector3d::Zero());
+    for (size_t i = 0; i < tags.size(); ++i) {
+      const auto at = index.find(tags[i]);
+      if (at != index.end()) s.points[static_cast<size_t>(at->second)] = Eigen::Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    }
+    check("reading the surface elements");
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::string& message) {
+    fail("gmsh failed: " + message);
+  } catch (const std::exception& e) {
+    fail(std::string("gmsh failed: ") + e.what());
+  }
+  return s;
+}
+
 }  // namespace
 
 }  // namespace alphaflex
@@ -553,4 +624,11 @@ extern "C" __attribute__((visibility("default"))) void alphaflex_gmsh_read_mesh(
     const std::string& path, const alphaflex::MeshOptions& options, const std::string& context,
     alphaflex::MeshData& mesh) {
   mesh = alphaflex::Reader(path, options, context).read();
+}
+
+// The module's second entry point: a body's surface mesh (gmsh_loader.cpp, read_surface_mesh).
+extern "C" __attribute__((visibility("default"))) void alphaflex_gmsh_read_surface(const std::string& path,
+                                                                                   const std::string& context,
+                                                                                   alphaflex::SurfaceMesh& surface) {
+  surface = alphaflex::read_surface(path, context);
 }

@@ -1,5 +1,5 @@
 """Opens an alphaflex XDMF file with ParaView's own reader (run under pvpython) and checks what a
-user sees: the time steps, the three blocks (bodies, links, joints), their point arrays, and that
+user sees: the time steps, the blocks (bodies, links, joints, shapes), their point arrays, and that
 the values equal those in the HDF5 file; each link is the polyline body → joint → body.
 
 usage: pvpython paraview_read.py ABSOLUTE/PATH/NAME.xdmf EXPECTED_STEPS
@@ -22,7 +22,8 @@ assert abs(times[0]) < 1e-15 and times == sorted(times), times
 reader.UpdatePipeline(times[-1])
 data = sm.Fetch(reader)
 blocks = {data.GetMetaData(i).Get(data.NAME()): data.GetBlock(i) for i in range(data.GetNumberOfBlocks())}
-assert set(blocks) == {"bodies", "links", "joints"}, blocks.keys()
+# (and "shapes": the slider-crank's crank and rod are boxes; tests/scenes/paraview_shapes.py checks them)
+assert set(blocks) == {"bodies", "links", "joints", "shapes"}, blocks.keys()
 arrays = {n: [b.GetPointData().GetArrayName(k) for k in range(b.GetPointData().GetNumberOfArrays())]
           for n, b in blocks.items()}
 for want in ("velocity", "acceleration", "angle", "axis"):

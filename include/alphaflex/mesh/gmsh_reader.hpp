@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "alphaflex/mesh/surface_mesh.hpp"
+
 namespace alphaflex {
 
 /// How a .geo is meshed. Every option is refused for a .msh (read as is, never re-meshed).
@@ -85,6 +87,12 @@ struct MeshData {
 /// at once (gmsh's first initialize in a process makes FLTK rewrite its preference file, with the
 /// same content on every rank: meshes/README.md).
 MeshData read_mesh(const std::string& path, const MeshOptions& options, const std::string& context);
+
+/// The surface elements (3-node triangles, 4-node quadrilaterals) of every surface of a .stl or
+/// .msh (a body's shape), points in the file's units, in order of first use. InputError (starting
+/// with `context`, naming the file) if the file is missing, of another kind, invalid, or has no
+/// surface elements or others than these. Each call is a gmsh session of its own, as read_mesh.
+SurfaceMesh read_surface_mesh(const std::string& path, const std::string& context);
 
 /// MeshData as bytes and back (one rank reads the mesh with gmsh and sends it to the others).
 std::vector<char> pack(const MeshData& mesh);

@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "alphaflex/model/body_shape.hpp"
 #include "alphaflex/model/constraint.hpp"
 #include "alphaflex/model/element.hpp"
 #include "alphaflex/model/node.hpp"
@@ -23,12 +24,15 @@ class Model {
   void add_element(std::unique_ptr<Element> e);
   void add_constraint(std::unique_ptr<Constraint> c);
   void add_sensor(Sensor s) { sensors_.push_back(std::move(s)); }
+  /// A body's shape for the results (model/body_shape.hpp); no effect on the dynamics.
+  void add_shape(BodyShape s) { shapes_.push_back(std::move(s)); }
 
   const std::vector<Node>& nodes() const { return nodes_; }
   const Node& node(int i) const { return nodes_.at(static_cast<size_t>(i)); }
   const std::vector<std::unique_ptr<Element>>& elements() const { return elements_; }
   const std::vector<std::unique_ptr<Constraint>>& constraints() const { return constraints_; }
   const std::vector<Sensor>& sensors() const { return sensors_; }
+  const std::vector<BodyShape>& shapes() const { return shapes_; }
 
   int num_dofs() const { return num_dofs_; }
   /// Stored configuration numbers (≥ num_dofs(): 7 per spatial frame).
@@ -72,6 +76,7 @@ class Model {
   std::vector<std::unique_ptr<Element>> elements_;
   std::vector<std::unique_ptr<Constraint>> constraints_;
   std::vector<Sensor> sensors_;
+  std::vector<BodyShape> shapes_;
   std::vector<int> first_multiplier_;
   std::unordered_map<std::string, int> node_index_, constraint_index_;
   int num_dofs_ = 0;

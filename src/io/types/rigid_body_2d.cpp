@@ -1,6 +1,6 @@
 // `rigid_body` (planar): x, y, θ of the centre of mass.
 #include "alphaflex/elements/rigid_body_2d.hpp"
-#include "common.hpp"
+#include "body_shape.hpp"
 
 namespace alphaflex::scene_detail {
 namespace {
@@ -16,6 +16,7 @@ void read_rigid_body_2d(const Item& it) {
   nd.v0 = Eigen::Vector3d(v.x(), v.y(), k.number("angular_velocity", 0.0));
   const int id = it.model.add_node(nd);
   it.model.add_element(std::make_unique<RigidBody2D>(it.name, id, m, J, it.sb.gravity.head<2>()));
+  read_body_shape(it, id);
 }
 
 }  // namespace
@@ -29,7 +30,8 @@ void register_rigid_body_2d(SceneTypes& t) {
       {"position", KeyType::Vec2, "m", kRequired, "world position of the centre of mass at t = 0"},
       {"angle", KeyType::Number, "rad", "0", "angle of the body frame at t = 0"},
       {"velocity", KeyType::Vec2, "m/s", "[0, 0]", "velocity at t = 0"},
-      {"angular_velocity", KeyType::Number, "rad/s", "0", "at t = 0, counter-clockwise positive"}}), read_rigid_body_2d);
+      {"angular_velocity", KeyType::Number, "rad/s", "0", "at t = 0, counter-clockwise positive"},
+      shape_key()}), read_rigid_body_2d);
 }
 
 }  // namespace alphaflex::scene_detail

@@ -3,7 +3,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "alphaflex/elements/spatial_elements.hpp"
-#include "common.hpp"
+#include "body_shape.hpp"
 
 namespace alphaflex::scene_detail {
 namespace {
@@ -53,6 +53,7 @@ void read_rigid_body_3d(const Item& it) {
   nd.v0 << v, R.transpose() * w;  // Ω in the body frame
   const int id = it.model.add_node(nd);
   it.model.add_element(std::make_unique<RigidBody3D>(it.name, id, m, J, it.sb.gravity));
+  read_body_shape(it, id);
   // Markers: named frames fixed to the body (position and orientation in the body frame), for
   // joints (marker1/marker2) and point sensors (marker).
   if (const YAML::Node ml = k.node("markers")) {
@@ -85,10 +86,12 @@ void register_rigid_body_3d(SceneTypes& t) {
       {"orientation", KeyType::Map, "rad", "identity", "body frame at t = 0: a rotation vector [rx, ry, rz] or {axis, angle}", {}, "", "rotation"},
       {"velocity", KeyType::Vec3, "m/s", "[0, 0, 0]", "velocity of the centre of mass at t = 0"},
       {"angular_velocity", KeyType::Vec3, "rad/s", "[0, 0, 0]", "world components at t = 0"},
-      {"markers", KeyType::List, "m, rad", "none", "frames fixed to the body, `{name, position, orientation}` in the body frame"}}),
+      {"markers", KeyType::List, "m, rad", "none", "frames fixed to the body, `{name, position, orientation}` in the body frame"},
+      shape_key()}),
               read_rigid_body_3d);
   t.parts.push_back(&marker_schema());
   t.parts.push_back(&rotation_schema());
+  t.parts.push_back(&shape_schema());
 }
 
 }  // namespace alphaflex::scene_detail
