@@ -1,9 +1,11 @@
 #include "alphaflex/study/run_groups.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <numeric>
 #include <stdexcept>
+#include <thread>
 
 #include "alphaflex/core/error.hpp"
 
@@ -50,7 +52,21 @@ std::vector<int> RunGroups::assign(const std::vector<double>& cost) const {
   return group;
 }
 
+void RunGroups::wait_for_all() const {
+  // A non-blocking barrier tested every millisecond: a group that is done sleeps instead of
+  // spinning in a blocking collective, which would take a core from the groups still running
+  // (Open MPI polls) whenever the job has no more cores than ranks.
+  MPI_Request req;
+  MPI_Ibarrier(comm_, &req);
+  for (int done = 0;;) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 std::vector<std::string> RunGroups::allgather(const std::string& mine) const {
+  wait_for_all();
   int size = 1;
   MPI_Comm_size(comm_, &size);
   int len = static_cast<int>(mine.size());

@@ -44,7 +44,11 @@ class RunGroups {
   /// the same answer.
   std::vector<int> assign(const std::vector<double>& cost) const;
 
-  /// Every rank's byte string, on every rank (in rank order of the whole communicator).
+  /// Returns when every rank has called it; waits asleep, not polling (see the definition).
+  void wait_for_all() const;
+
+  /// Every rank's byte string, on every rank (in rank order of the whole communicator), once every
+  /// rank has come (wait_for_all).
   std::vector<std::string> allgather(const std::string& mine) const;
 
  private:
