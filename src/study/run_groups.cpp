@@ -32,10 +32,45 @@ RunGroups::RunGroups(MPI_Comm comm, int ranks_per_run) : comm_(comm) {
   group_index_ = rank / ranks_per_run;  // consecutive ranks together: they share a node first
   MPI_Comm_split(comm, group_index_, rank, &group_);
   MPI_Comm_rank(group_, &group_rank_);
+  // One node: a counter in memory every rank maps (MPI-3 shared windows), read and advanced with
+  // the processor's atomic fetch-and-add: no rank needs to be in an MPI call for another to take
+  // its next run. Across nodes the counter would need MPI's one-sided progress: static shares.
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node);
+  int node_size = 0, one_node = 0;
+  MPI_Comm_size(node, &node_size);
+  one_node = node_size == size ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &one_node, 1, MPI_INT, MPI_MIN, comm);
+  if (one_node && groups_ > 1) {
+    void* base = nullptr;
+    MPI_Win_allocate_shared(rank == 0 ? static_cast<MPI_Aint>(sizeof(long)) : 0, sizeof(long), MPI_INFO_NULL, node, &base,
+                            &window_);
+    MPI_Aint bytes = 0;
+    int unit = 0;
+    void* first = nullptr;
+    MPI_Win_shared_query(window_, 0, &bytes, &unit, &first);
+    counter_ = static_cast<long*>(first);
+    if (rank == 0) __atomic_store_n(counter_, 0L, __ATOMIC_SEQ_CST);
+    MPI_Barrier(comm);
+  }
+  MPI_Comm_free(&node);
 }
 
 RunGroups::~RunGroups() {
+  if (window_ != MPI_WIN_NULL) MPI_Win_free(&window_);
   if (group_ != MPI_COMM_NULL) MPI_Comm_free(&group_);
+}
+
+long RunGroups::next_task() const { return __atomic_fetch_add(counter_, 1L, __ATOMIC_SEQ_CST); }
+
+long RunGroups::from_leader(long value) const {
+  MPI_Request req;
+  MPI_Ibcast(&value, 1, MPI_LONG, 0, group_, &req);
+  for (int done = 0;;) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (done) return value;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 std::vector<int> RunGroups::assign(const std::vector<double>& cost) const {

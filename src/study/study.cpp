@@ -485,14 +485,31 @@ class Study {
   /// The runs on groups of k ranks, each group its share (longest first by step count, t_end/h);
   /// the outcomes in the order of `runs` on every rank. An error a run threw is rethrown on every
   /// rank once all groups are done (the first in run order).
+  /// On one node the groups take the runs one at a time, longest first, from a shared counter
+  /// (RunGroups::next_task), and rank 0 runs the peers (IDA, Radau) first, while the other groups
+  /// take runs: the groups end together whatever the runs and the peers cost. Else each group runs
+  /// its share by LPT and rank 0 runs the peers afterwards (convergence()).
   std::vector<RunOutcome> run_concurrently(const std::vector<ConvergenceRun>& runs, int k, double t_end) {
     RunGroups groups(comm_, k);
     std::vector<double> cost;
     for (const auto& r : runs) cost.push_back(t_end / r.h);
+    std::vector<size_t> order(runs.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost[a] > cost[b]; });
     const std::vector<int> group = groups.assign(cost);
+    peers_first_ = groups.shares_a_counter();
+    if (peers_first_ && rank_ == 0) run_peers_guarded(t_end);
     std::vector<RunOutcome> mine;
-    for (size_t i = 0; i < runs.size(); ++i) {
-      if (group[i] != groups.group()) continue;
+    for (size_t n = 0;; ++n) {
+      size_t i = 0;
+      if (groups.shares_a_counter()) {
+        i = static_cast<size_t>(groups.from_leader(groups.leads_group() ? groups.next_task() : 0));
+      } else {
+        while (n < order.size() && group[order[n]] != groups.group()) ++n;
+        i = n < order.size() ? order[n] : order.size();
+      }
+      if (i >= runs.size()) break;
+      if (groups.shares_a_counter()) i = order[i];
       RunOutcome o = run_on_group(runs[i], groups.group_comm());
       o.task = static_cast<int>(i);
       const bool stop = o.error_code != 0 || (runs[i].reference && !o.row.ok);  // the others' errors need the reference
@@ -560,22 +577,27 @@ class Study {
       res_.rows.push_back(row);
     }
     if (rank_ == 0) {
-      // Rank 0 alone: a failing peer must not throw past the collective calls that follow.
-      try {
-        run_peers(t_end);
-      } catch (const std::exception& e) {
-        warn(std::string("the peers stopped: ") + e.what());
-      }
+      if (!peers_first_) run_peers_guarded(t_end);
+      for (const auto& [p, label] : peer_results_) add_peer_row(p, label);
     }
     fit_slopes();
+  }
+
+  /// Rank 0 alone: a failing peer must not throw past the collective calls that follow. The peers'
+  /// results wait in peer_results_ for the reference (their errors) and their rows' place.
+  void run_peers_guarded(double t_end) {
+    try {
+      run_peers(t_end);
+    } catch (const std::exception& e) {
+      warn(std::string("the peers stopped: ") + e.what());
+    }
   }
 
   void run_peers(double t_end) {
     const PeerSpec& p = spec_.peers;
     if (p.problem.empty()) return;
     for (double tol : p.ida) {
-      const PeerResult r = andrews_ida(tol, tol, t_end);
-      add_peer_row(r, "IDA");
+      peer_results_.emplace_back(andrews_ida(tol, tol, t_end), "IDA");
     }
     if (!p.radau.empty()) {
       const std::string script = std::string(ALPHAFLEX_SOURCE_DIR) + "/scripts/study_radau_andrews.py";
@@ -596,7 +618,7 @@ class Study {
         return;
       }
       const MixedTable tab = read_numeric_csv_mixed(out);
-      for (const auto& row : tab.rows) add_peer_row(row, "Radau");
+      for (const auto& row : tab.rows) peer_results_.emplace_back(radau_result(row), "Radau");
       res_.files.push_back(out);
     }
   }
@@ -622,7 +644,7 @@ class Study {
     return t;
   }
 
-  void add_peer_row(const std::vector<std::string>& row, const std::string& label) {
+  static PeerResult radau_result(const std::vector<std::string>& row) {
     // Columns of scripts/study_radau_andrews.py: method,rtol,atol,ok,cpu,steps,nfev,njev,nlu,message,values...
     PeerResult r;
     static const std::vector<std::string> head{"method", "rtol", "atol", "ok", "cpu", "steps", "nfev", "njev", "nlu", "message"};
@@ -641,7 +663,7 @@ class Study {
       r.names.push_back(names[k]);
       r.values.push_back(std::stod(row[head.size() + k]));
     }
-    add_peer_row(r, label);
+    return r;
   }
 
   void add_peer_row(const PeerResult& p, const std::string& label) {
@@ -1139,6 +1161,8 @@ class Study {
   std::set<std::string> file_values_;          ///< sensors whose reference value is the file's
   std::vector<std::string> reference_parts_;   ///< what the reference label lists
   int run_ranks_ = 0;                          ///< ranks of each run (0: all, one run at a time)
+  bool peers_first_ = false;                   ///< rank 0 ran the peers while the other groups ran
+  std::vector<std::pair<PeerResult, std::string>> peer_results_;  ///< rank 0: the peers' results, labels
   std::vector<std::string> sensors_;
 };
 

@@ -30,6 +30,8 @@ struct RunSettings {
   /// Newton failure policy: up to this many successive halvings of h when a step does not converge
   /// (0: off, the run stops at the first failure); h grows back by doubling after 4 good steps.
   int step_cuts = 0;
+  /// solver.linear.low_rank: MUMPS' block low-rank dropping tolerance (0: exact factorization).
+  double low_rank = 0.0;
   double t_end = 1.0;   ///< final time (s)
   int output_every = 1; ///< HDF5 output every N steps (sensors: every step)
   double progress_interval = 30.0;  ///< s of wall time between progress lines in batch logs (0: none)

@@ -39,6 +39,17 @@ class RunGroups {
   int groups() const { return groups_; }
   bool leads_group() const { return group_rank_ == 0; }
 
+  /// True when every rank is on one node: then the groups take their runs one at a time from a
+  /// counter in shared memory (next_task), so that a group that finishes early, or starts late,
+  /// takes more; else each group runs the share assign() gives it.
+  bool shares_a_counter() const { return counter_ != nullptr; }
+  /// The next position in the common list of runs (group leaders only; atomic fetch-and-add on
+  /// the shared counter: each position is handed out once).
+  long next_task() const;
+  /// `value` of the group's leader on every rank of the group (waited for asleep, like
+  /// wait_for_all, while the leader runs something else).
+  long from_leader(long value) const;
+
   /// A group for each task, by longest processing time first (Graham 1969): tasks in decreasing
   /// estimated cost, each to the group with the least work so far. Deterministic: every rank gets
   /// the same answer.
@@ -53,6 +64,8 @@ class RunGroups {
 
  private:
   MPI_Comm comm_, group_ = MPI_COMM_NULL;
+  MPI_Win window_ = MPI_WIN_NULL;  ///< the shared counter's memory (rank 0's)
+  long* counter_ = nullptr;
   int group_index_ = 0, groups_ = 1, group_rank_ = 0;
 };
 
