@@ -2,7 +2,7 @@
 //
 //   alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5] [PETSc options]
 //   alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]
-//                   [--study-set key=value ...] [--no-plots] [PETSc options]
+//                   [--study-set key=value ...] [--no-plots] [--ranks-per-run K] [PETSc options]
 //   alphaflex keys [--check FILE | --update FILE]
 //   alphaflex modes SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5]
 //                   [PETSc/SLEPc options]
@@ -32,6 +32,7 @@
 #include "alphaflex/core/mpi_singleton.hpp"
 #include "alphaflex/io/schema.hpp"
 #include "alphaflex/io/scene_modes.hpp"
+#include "alphaflex/study/run_groups.hpp"
 #include "alphaflex/study/study.hpp"
 
 namespace {
@@ -39,7 +40,7 @@ namespace {
 const char* kUsage =
     "usage: alphaflex run SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5] [PETSc options]\n"
     "       alphaflex study SCENE.yaml [--study STUDY.yaml] [-o OUTDIR] [--set key=value ...]\n"
-    "                       [--study-set key=value ...] [--no-plots] [PETSc options]\n"
+    "                       [--study-set key=value ...] [--no-plots] [--ranks-per-run K] [PETSc options]\n"
     "       alphaflex keys [--check FILE | --update FILE]\n"
     "       alphaflex modes SCENE.yaml [-o OUTDIR] [--set key=value ...] [--restart CHECKPOINT.h5]\n"
     "                       [PETSc/SLEPc options]\n"
@@ -54,6 +55,8 @@ const char* kUsage =
     "  writes OUTDIR/NAME_study.csv and charts (scripts/study_plots.py); docs/study.md\n"
     "  --study FILE       the study map (a file with one top-level study: key)\n"
     "  --study-set k=v    override a study key, e.g. --study-set h=[1e-3,5e-4]\n"
+    "  --ranks-per-run K  under mpirun -np N, a convergence study runs N/K simulations at a time, each\n"
+    "                     on K ranks (K divides N; default 1 for scenes up to 20000 unknowns, else N)\n"
     "  --no-plots         write the CSV only\n"
     "  keys: the key tables of every scene and study section, from the reader's schemas (markdown);\n"
     "  --update FILE rewrites the tables between <!-- keys:NAME --> and <!-- /keys --> in FILE,\n"
@@ -81,6 +84,7 @@ struct CommandLine {
   std::string command, scene, outdir = ".", study_file, restart;
   std::vector<std::string> overrides, study_overrides;
   bool plots = true, study_options = false;
+  int ranks_per_run = 0;  ///< --ranks-per-run (0: the study's default)
   std::vector<char*> petsc_argv;
   std::string error;
 };
@@ -111,6 +115,21 @@ CommandLine parse(int argc, char** argv) {
       cl.study_options = true;
       if (i + 1 >= argc) cl.error = "--study-set needs key=value";
       else cl.study_overrides.push_back(argv[++i]);
+    } else if (a == "--ranks-per-run") {
+      cl.study_options = true;
+      std::size_t used = 0;
+      int k = 0;
+      try {
+        k = i + 1 < argc ? std::stoi(argv[i + 1], &used) : 0;
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (i + 1 >= argc || used == 0 || argv[i + 1][used] != '\0' || k < 1)
+        cl.error = "--ranks-per-run needs a whole number of ranks >= 1" +
+                   (i + 1 < argc ? std::string(", got '") + argv[i + 1] + "'" : std::string());
+      else
+        cl.ranks_per_run = k;
+      ++i;
     } else if (a == "--no-plots") {
       cl.study_options = true;
       cl.plots = false;
@@ -232,6 +251,7 @@ void study_command(const CommandLine& cl, int rank, std::string& message) {
   sopt.outdir = cl.outdir;
   sopt.scene_overrides = cl.overrides;
   sopt.plots = cl.plots;
+  sopt.ranks_per_run = cl.ranks_per_run;
   const auto res = alphaflex::study::run_study(spec, sopt, PETSC_COMM_WORLD);
   if (rank == 0)
     for (const auto& f : res.files) std::cout << "wrote " << f << "\n";
@@ -322,7 +342,7 @@ int main(int argc, char** argv) {
   if (cl.error.empty() && cl.scene.empty()) cl.error = cl.command + " needs a scene file";
   if (cl.error.empty() && cl.command == "study" && !cl.restart.empty()) cl.error = "--restart is an option of `alphaflex run` and `alphaflex modes`";
   if (cl.error.empty() && cl.command != "study" && cl.study_options)
-    cl.error = "--study, --study-set and --no-plots are options of `alphaflex study`";
+    cl.error = "--study, --study-set, --no-plots and --ranks-per-run are options of `alphaflex study`";
   if (cl.error.empty()) cl.error = check_number_options(cl.petsc_argv);
   if (!cl.error.empty()) {
     std::cerr << "alphaflex: " << cl.error << "\n\n" << kUsage;
@@ -347,7 +367,14 @@ int main(int argc, char** argv) {
 
   int code = 0;
   std::string message;
-  try {
+  // --ranks-per-run must split the job's ranks into equal groups: known only now (exit 2, every rank).
+  const std::string groups_problem =
+      cl.ranks_per_run > 0 ? alphaflex::study::ranks_per_run_problem(cl.ranks_per_run, size) : std::string();
+  if (!groups_problem.empty()) {
+    code = 2;
+    message = groups_problem;
+  }
+  if (code == 0) try {
     if (cl.command == "study") {
       study_command(cl, rank, message);
     } else if (cl.command == "modes") {

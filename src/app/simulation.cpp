@@ -97,7 +97,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   if (fault_injected("input")) throw InputError(scene.file + ": injected fault (-af_inject_fault input): a bad value found on this rank only");
   o.system = std::make_unique<SaddlePointSystem>(sub);
   SaddlePointSystem& system = *o.system;
-  o.solver = std::make_unique<LinearSolver>(comm);
+  o.solver = std::make_unique<LinearSolver>(comm, rs.low_rank);
   LinearSolver& solver = *o.solver;
   o.integrator = std::make_unique<GeneralizedAlpha>(system, solver, rs.parameters, rs.integrator);
   GeneralizedAlpha& integrator = *o.integrator;
@@ -407,6 +407,11 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << "  MUMPS               " << s.mumps.entries << " entries in the factors, " << s.mumps.flops
        << " flop per factorization, " << s.mumps.memory_sum_mb << " MB in all (" << s.mumps.memory_max_mb
        << " MB on the largest rank)\n";
+  if (s.mumps.mumps && s.mumps.low_rank_tolerance > 0.0)
+    os << "  MUMPS low-rank      BLR at tolerance " << s.mumps.low_rank_tolerance << ": " << s.mumps.low_rank_entries
+       << " entries in the compressed factors (INFOG(35)), " << std::setprecision(3)
+       << 100.0 * s.mumps.low_rank_entries / s.mumps.entries << " % of the full-rank " << s.mumps.entries
+       << " (INFOG(29))\n" << std::setprecision(4);
   if (!s.blas.empty()) os << "  BLAS                " << s.blas << "\n";
   if (s.workspace_retries > 0)
     os << "  MUMPS workspace     " << s.workspace_retries << " factorizations repeated with more workspace (ICNTL(14) now "

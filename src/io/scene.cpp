@@ -77,6 +77,7 @@ const Schema& solver_schema() {
       {"consistent_start", KeyType::Flag, "–", "on", "project the initial positions onto Φ = 0 (minimum-norm correction) and the velocities onto Φ_q q̇ + Φ_t = 0 (correction of least kinetic energy) before the first step"},
       {"newton", KeyType::Map, "–", "all defaults", "Newton iteration (`solver.newton`)"},
       {"static", KeyType::Map, "–", "all defaults", "load stepping of a static analysis or of `initial_static` (`solver.static`)"},
+      {"linear", KeyType::Map, "–", "all defaults", "the linear solver of each Newton iteration (`solver.linear`)"},
       {"initial_static", KeyType::Flag, "–", "off", "before the dynamic run, bring the initial state to static equilibrium under the loads at t = 0 (load stepping as `static`); the dynamics then starts from that pre-loaded state at rest"},
   }};
   return s;
@@ -108,6 +109,15 @@ const Schema& newton_schema() {
       {"max_contraction", KeyType::Number, "–", "0.5",
        "with `modified`: contraction rate θ = ‖Δ_k‖∞/‖Δ_{k−1}‖∞ above which S_t is assembled and factored afresh",
        Range::open(0, 1), "contraction rate"},
+  }};
+  return s;
+}
+
+const Schema& linear_schema() {
+  static const Schema s{"solver.linear", {
+      {"low_rank", KeyType::Number, "–", "off",
+       "block low-rank factorization in MUMPS (BLR: ICNTL(35) = 2) with this dropping tolerance ε (CNTL(7)): off-diagonal blocks of the fronts are kept as low-rank products accurate to ε relative to the block; fewer flops and factor entries (the run summary gives both counts). Only the Newton matrix is approximate, the residual stays exact: converged results differ from the exact factorization's by the Newton tolerance, while a loose ε costs Newton iterations (or convergence). Off (exact LU) when absent; measurements in docs/performance.md",
+       Range::open(0, 1), "tolerance"},
   }};
   return s;
 }
@@ -215,6 +225,10 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
     o.max_contraction = n.number("max_contraction", o.max_contraction);
   }
   rs.statics.newton = rs.integrator.newton;
+  if (s.has("linear")) {
+    const Section l(rd, s.node("linear"), "solver.linear", linear_schema());
+    rs.low_rank = l.number("low_rank", rs.low_rank);
+  }
 }
 
 void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
@@ -240,7 +254,7 @@ void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
 namespace scene_detail {
 
 std::vector<const Schema*> section_schemas() {
-  std::vector<const Schema*> v{&top_schema(), &load_schema(), &solver_schema(), &tolerance_schema(), &static_schema(), &newton_schema(), &output_schema()};
+  std::vector<const Schema*> v{&top_schema(), &load_schema(), &solver_schema(), &tolerance_schema(), &static_schema(), &newton_schema(), &linear_schema(), &output_schema()};
   v.push_back(&mesh_schema());
   v.push_back(&modes_schema());
   v.push_back(&campbell_schema());

@@ -23,7 +23,7 @@ bool workspace_too_small(PetscInt info1) {
 }  // namespace
 
 
-LinearSolver::LinearSolver(MPI_Comm comm) : comm_(comm) {
+LinearSolver::LinearSolver(MPI_Comm comm, double low_rank) : comm_(comm), low_rank_(low_rank) {
   check_petsc(KSPCreate(comm, &ksp_), "KSPCreate");
   check_petsc(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
   PC pc;
@@ -82,7 +82,7 @@ PetscErrorCode LinearSolver::choose_backend(Mat A) {
   PetscCall(PetscFree(all));
   bool chosen = false;
   for (const char* key : {"-ksp_", "-pc_", "-mat_mumps_"}) chosen = chosen || options.find(key) != std::string::npos;
-  backend_ = (size == 1 && n <= limit && !chosen) ? Backend::Dense : Backend::Krylov;
+  backend_ = (size == 1 && n <= limit && !chosen && low_rank_ <= 0.0) ? Backend::Dense : Backend::Krylov;
   if (backend_ == Backend::Dense) {
     dense_.setZero(n, n);
     lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
@@ -137,6 +137,7 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   PC pc;
   PetscCall(KSPGetPC(ksp_, &pc));
   PetscCall(KSPSetOperators(ksp_, A, A));
+  PetscCall(set_low_rank(pc));
   for (int attempt = 0;; ++attempt) {
     PetscCall(KSPSetUp(ksp_));
     // Count factorizations only when the options left the PC a factorization.
@@ -183,8 +184,34 @@ PetscErrorCode LinearSolver::factor(Mat A) {
     PetscCall(PCFactorSetUpMatSolverType(pc));
     PetscCall(PCFactorGetMatrix(pc, &F));
     PetscCall(MatMumpsSetIcntl(F, 14, icntl14_));
+    low_rank_set_ = false;
+    PetscCall(set_low_rank(pc));
     ++symbolic_;
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearSolver::set_low_rank(PC pc) {
+  PetscFunctionBeginUser;
+  if (low_rank_ <= 0.0 || low_rank_set_) PetscFunctionReturn(0);
+  // The factor must exist before the analysis reads ICNTL(35): MUMPS chooses the BLR clustering
+  // of the fronts there. ICNTL(35) = 2: BLR in the factorization and the solve (the factors stay
+  // compressed, which is what saves memory); CNTL(7): the dropping tolerance ε of the low-rank
+  // approximations, ‖B − XYᵀ‖ ≤ ε‖B‖ per block (MUMPS 5.5 users' guide, ICNTL(35), CNTL(7)).
+  // Options given on the command line (-mat_mumps_icntl_35, -mat_mumps_cntl_7) still win: PETSc
+  // reads them into the factor at the analysis.
+  PetscCall(PCFactorSetUpMatSolverType(pc));
+  MatSolverType type = nullptr;
+  PetscBool is_mumps = PETSC_FALSE;
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
+  if (is_mumps) {
+    Mat F = nullptr;
+    PetscCall(PCFactorGetMatrix(pc, &F));
+    PetscCall(MatMumpsSetIcntl(F, 35, 2));
+    PetscCall(MatMumpsSetCntl(F, 7, low_rank_));
+  }
+  low_rank_set_ = true;
   PetscFunctionReturn(0);
 }
 
@@ -209,6 +236,16 @@ PetscErrorCode LinearSolver::read_statistics(PC pc) {
   stats_.entries = entries < 0 ? -1e6 * static_cast<double>(entries) : static_cast<double>(entries);  // < 0: millions
   stats_.memory_max_mb = static_cast<double>(mem_max);
   stats_.memory_sum_mb = static_cast<double>(mem_sum);
+  PetscInt blr = 0;
+  PetscCall(MatMumpsGetIcntl(F, 35, &blr));
+  if (blr > 0) {
+    PetscInt compressed = 0;
+    PetscReal tolerance = 0.0;
+    PetscCall(MatMumpsGetInfog(F, 35, &compressed));
+    PetscCall(MatMumpsGetCntl(F, 7, &tolerance));
+    stats_.low_rank_tolerance = tolerance;
+    stats_.low_rank_entries = compressed < 0 ? -1e6 * static_cast<double>(compressed) : static_cast<double>(compressed);
+  }
   PetscFunctionReturn(0);
 }
 

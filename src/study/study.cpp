@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/io/scene.hpp"
@@ -19,6 +20,7 @@
 #include "alphaflex/study/cpu_time.hpp"
 #include "alphaflex/study/iteration_matrix.hpp"
 #include "alphaflex/study/measures.hpp"
+#include "alphaflex/study/run_groups.hpp"
 #include "alphaflex/study/strain_energy.hpp"
 
 #ifndef ALPHAFLEX_SOURCE_DIR
@@ -271,10 +273,13 @@ class Study {
     return o;
   }
 
-  Scene scene_for(const SchemeSetting& st, double h, const std::string& scene_file = "", double tol = 0.0) {
+  /// The scene of a run, read on `comm` (default: the study's; a group's for concurrent runs);
+  /// `tol` > 0: an adaptive run (solver.tolerance rtol = atol = tol, first step h).
+  Scene scene_for(const SchemeSetting& st, double h, const std::string& scene_file = "", MPI_Comm comm = MPI_COMM_NULL,
+                  double tol = 0.0) {
     Scene sc;
     try {
-      sc = load_scene(scene_file.empty() ? spec_.scene : scene_file, overrides(st, h, tol), comm_);
+      sc = load_scene(scene_file.empty() ? spec_.scene : scene_file, overrides(st, h, tol), comm == MPI_COMM_NULL ? comm_ : comm);
     } catch (const InputError& e) {
       throw InputError(std::string(e.what()) + "\n  (in the runs of " + st.where + ")");
     }
@@ -310,16 +315,17 @@ class Study {
   }
 
   /// Reference values at t_end (file) and the reference run (if asked), and the sensors to report.
-  void prepare_reference(const Scene& base, double t_end) {
+  /// `reference_run_later`: the reference run is one of the study's concurrent runs, and
+  /// take_reference_run() gives its results when they are gathered.
+  void prepare_reference(const Scene& base, double t_end, bool reference_run_later = false) {
     Reference& r = ref_;
-    std::vector<std::string> parts;
     if (!spec_.reference.file.empty()) {
       const CsvTable tab = read_numeric_csv(spec_.reference.file);
       const int tc = tab.column("t");
       if (tc < 0) {
         if (tab.rows.size() != 1)
           throw InputError(spec_.reference.file + ": a reference without a t column must have one row (the values at t_end)");
-        for (size_t k = 0; k < tab.names.size(); ++k) r.at_end[tab.names[k]] = tab.rows[0][k];
+        for (size_t k = 0; k < tab.names.size(); ++k) r.at_end[tab.names[k]] = tab.rows[0][k], file_values_.insert(tab.names[k]);
       } else {
         const std::vector<double>* row_end = nullptr;
         for (const auto& row : tab.rows) {
@@ -338,27 +344,26 @@ class Study {
                            (r.times.empty() ? std::string("-") : sig6(r.times.back())) + " s)");
         if (row_end)
           for (size_t k = 0; k < tab.names.size(); ++k)
-            if (static_cast<int>(k) != tc) r.at_end[tab.names[k]] = (*row_end)[k];
+            if (static_cast<int>(k) != tc) r.at_end[tab.names[k]] = (*row_end)[k], file_values_.insert(tab.names[k]);
       }
-      parts.push_back(spec_.reference.file + " (" + spec_.reference.source + ")");
+      reference_parts_.push_back(spec_.reference.file + " (" + spec_.reference.source + ")");
     }
     if (spec_.reference.h > 0.0) {
-      const SchemeSetting& st = reference_setting();
-      std::ostringstream os;
-      os << "alphaflex run at h = " << spec_.reference.h << " s with setting '" << st.label << "'";
-      say("reference run: " + os.str() + " ...");
-      Scene sc = scene_for(st, spec_.reference.h);
-      RunRecord rec = run_one(sc, {}, comm_);
-      if (!rec.ok) throw SolverError("the study's reference run (" + os.str() + ") failed: " + rec.failure);
-      r.has_state = true;
-      r.state = rec.summary.final_state;
-      for (size_t k = 0; k < rec.summary.sensor_names.size(); ++k)
-        if (!r.at_end.count(rec.summary.sensor_names[k])) r.at_end[rec.summary.sensor_names[k]] = rec.summary.final_sensors[k];
-      os << ", " << rec.summary.steps << " steps, CPU " << std::setprecision(3) << rec.cpu << " s";
-      parts.push_back(os.str() + (spec_.reference.file.empty() ? "" : " (state errors q, v, lambda and sensors the file lacks)"));
+      if (reference_run_later) {
+        // Run with the others (convergence): the scene's sensors will have the run's values.
+        r.has_state = true;
+        for (const auto& sn : base.model->sensors())
+          if (!r.at_end.count(sn.name)) r.at_end[sn.name] = kNaN;
+      } else {
+        say("reference run: " + reference_run_name() + " ...");
+        Scene sc = scene_for(reference_setting(), spec_.reference.h);
+        RunRecord rec = run_one(sc, {}, comm_);
+        if (!rec.ok) throw SolverError("the study's reference run (" + reference_run_name() + ") failed: " + rec.failure);
+        take_reference_run(rec.summary.final_state, rec.summary.sensor_names, rec.summary.final_sensors, rec.summary.steps,
+                           rec.cpu);
+      }
     }
-    for (size_t i = 0; i < parts.size(); ++i) r.label += (i ? "; " : "") + parts[i];
-    res_.reference_label = r.label;
+    set_reference_label();
 
     // Sensors to report: those asked (each must exist), else every sensor with a reference value.
     std::vector<std::string> names;
@@ -382,6 +387,31 @@ class Study {
     if (r.has_state) res_.error_names = {"q", "v"};
     if (r.has_state && base.model->num_multipliers() > 0) res_.error_names.push_back("lambda");
     for (const auto& s : sensors_) res_.error_names.push_back(s);
+  }
+
+  std::string reference_run_name() const {
+    std::ostringstream os;
+    os << "alphaflex run at h = " << spec_.reference.h << " s with setting '" << reference_setting().label << "'";
+    return os.str();
+  }
+
+  /// The reference run's final state, and its sensor values where the reference file has none.
+  void take_reference_run(const MechanicalState& final_state, const std::vector<std::string>& names,
+                          const std::vector<double>& values, long steps, double cpu) {
+    ref_.has_state = true;
+    ref_.state = final_state;
+    for (size_t k = 0; k < names.size(); ++k)
+      if (!file_values_.count(names[k])) ref_.at_end[names[k]] = values[k];
+    std::ostringstream os;
+    os << reference_run_name() << ", " << steps << " steps, CPU " << std::setprecision(3) << cpu << " s";
+    reference_parts_.push_back(os.str() + (spec_.reference.file.empty() ? "" : " (state errors q, v, lambda and sensors the file lacks)"));
+    set_reference_label();
+  }
+
+  void set_reference_label() {
+    ref_.label.clear();
+    for (size_t i = 0; i < reference_parts_.size(); ++i) ref_.label += (i ? "; " : "") + reference_parts_[i];
+    res_.reference_label = ref_.label;
   }
 
   StudyRow row_for(const Scene& sc, const SchemeSetting& st, double h, const RunRecord& rec) const {
@@ -422,65 +452,167 @@ class Study {
     std::cout << os.str() << std::endl;
   }
 
+  // ------------------------------------------------------------------ concurrent runs
+  struct ConvergenceRun {
+    const SchemeSetting* setting;
+    double h;
+    bool reference;
+    double tol = 0.0;  ///< > 0: an adaptive run (study.tol), first step h
+  };
+
+  /// One run on the group communicator `comm`: its row (errors not yet measured: the reference
+  /// may be another group's run) and final values. An exception is kept in the outcome, not
+  /// thrown: the other groups are still running and meet this one in the gather.
+  RunOutcome run_on_group(const ConvergenceRun& run, MPI_Comm comm) {
+    RunOutcome o;
+    try {
+      Scene sc = scene_for(*run.setting, run.h, "", comm, run.tol);
+      RunNeeds needs;
+      needs.last_state = spec_.condition_number && !run.reference && run.tol == 0.0;
+      RunRecord rec = run_one(sc, needs, comm);
+      o.row = row_for(sc, *run.setting, run.h, rec);
+      if (rec.ok) {
+        o.sensor_names = rec.summary.sensor_names;
+        o.final_sensors = rec.summary.final_sensors;
+        o.final_state = rec.summary.final_state;
+      }
+      if (needs.last_state && rec.t.size() > 0) {
+        const ConditionNumbers c = iteration_matrix_condition(*sc.model, rec.last, o.row.params, run.h, o.row.scaling, comm);
+        o.row.extra.emplace_back("cond_2norm", c.two_norm);
+        o.row.extra.emplace_back("cond_mumps1", c.mumps_cond1);
+        o.row.extra.emplace_back("cond_mumps2", c.mumps_cond2);
+      }
+    } catch (const std::exception& e) {
+      o.error_code = exit_code_of(e);
+      o.error = e.what();
+    }
+    return o;
+  }
+
+  /// The runs on groups of k ranks, each group its share (longest first by step count, t_end/h);
+  /// the outcomes in the order of `runs` on every rank. An error a run threw is rethrown on every
+  /// rank once all groups are done (the first in run order).
+  /// On one node the groups take the runs one at a time, longest first, from a shared counter
+  /// (RunGroups::next_task), and rank 0 runs the peers (IDA, Radau) first, while the other groups
+  /// take runs: the groups end together whatever the runs and the peers cost. Else each group runs
+  /// its share by LPT and rank 0 runs the peers afterwards (convergence()).
+  std::vector<RunOutcome> run_concurrently(const std::vector<ConvergenceRun>& runs, int k, double t_end) {
+    RunGroups groups(comm_, k);
+    std::vector<double> cost;
+    for (const auto& r : runs) cost.push_back(t_end / r.h);
+    std::vector<size_t> order(runs.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost[a] > cost[b]; });
+    const std::vector<int> group = groups.assign(cost);
+    peers_first_ = groups.shares_a_counter();
+    if (peers_first_ && rank_ == 0) run_peers_guarded(t_end);
+    std::vector<RunOutcome> mine;
+    for (size_t n = 0;; ++n) {
+      size_t i = 0;
+      if (groups.shares_a_counter()) {
+        i = static_cast<size_t>(groups.from_leader(groups.leads_group() ? groups.next_task() : 0));
+      } else {
+        while (n < order.size() && group[order[n]] != groups.group()) ++n;
+        i = n < order.size() ? order[n] : order.size();
+      }
+      if (i >= runs.size()) break;
+      if (groups.shares_a_counter()) i = order[i];
+      RunOutcome o = run_on_group(runs[i], groups.group_comm());
+      o.task = static_cast<int>(i);
+      const bool stop = o.error_code != 0 || (runs[i].reference && !o.row.ok);  // the others' errors need the reference
+      mine.push_back(std::move(o));
+      if (stop) break;
+    }
+    std::vector<RunOutcome> all(runs.size());
+    std::vector<bool> have(runs.size(), false);
+    for (const std::string& bytes : groups.allgather(groups.leads_group() ? pack(mine) : std::string()))
+      for (RunOutcome& o : unpack(bytes)) {
+        have[static_cast<size_t>(o.task)] = true;
+        all[static_cast<size_t>(o.task)] = std::move(o);
+      }
+    for (size_t i = 0; i < all.size(); ++i)
+      if (have[i] && all[i].error_code != 0) rethrow(all[i]);
+    for (size_t i = 0; i < all.size(); ++i)
+      if (!have[i] && !(runs[0].reference && !all[0].row.ok))
+        throw std::logic_error("study: run " + std::to_string(i) + " of the convergence study has no outcome");
+    return all;
+  }
+
   // ------------------------------------------------------------------ modes
   void convergence() {
     Scene base = scene_for(spec_.settings.front(), spec_.h.front());
     const double t_end = base.settings.t_end;
-    prepare_reference(base, t_end);
+    const int k = opt_.ranks_per_run > 0 ? opt_.ranks_per_run
+                                         : default_ranks_per_run(base.model->num_dofs() + base.model->num_multipliers(), size_);
+    const std::string problem = ranks_per_run_problem(k, size_);
+    if (!problem.empty()) throw InputError(problem);  // the command line checks it first (exit 2)
+    run_ranks_ = k;
+    const bool reference_run = spec_.reference.h > 0.0;
+    prepare_reference(base, t_end, reference_run);
+    std::ostringstream groups;
+    if (size_ > k) groups << ", " << size_ / k << " runs at a time on " << k << " rank(s) each";
     say("study " + spec_.name + ": convergence, " + std::to_string(spec_.settings.size()) + " setting(s) x " +
-        std::to_string(spec_.h.size()) + " step size(s); reference: " + res_.reference_label);
+        std::to_string(spec_.h.size()) + " step size(s)" + groups.str() + "; reference: " +
+        (reference_run ? res_.reference_label + (res_.reference_label.empty() ? "" : "; ") + reference_run_name() + " (with the runs)"
+                       : res_.reference_label));
+
+    // The runs: the reference run (if any) first, then setting by setting, h by h (the CSV's order).
+    std::vector<ConvergenceRun> runs;
+    if (reference_run) runs.push_back({&reference_setting(), spec_.reference.h, true});
+    // Per setting the fixed step sizes, then the tolerances of adaptive runs (first step h[0]).
     for (const auto& st : spec_.settings) {
-      // The fixed step sizes, then the tolerances of adaptive runs (first step h[0]).
-      const size_t runs = spec_.h.size() + spec_.tol.size();
-      for (size_t i = 0; i < runs; ++i) {
-        const bool adaptive = i >= spec_.h.size();
-        const double h = adaptive ? spec_.h.front() : spec_.h[i];
-        const double tol = adaptive ? spec_.tol[i - spec_.h.size()] : 0.0;
-        Scene sc = scene_for(st, h, "", tol);
-        RunNeeds needs;
-        needs.last_state = spec_.condition_number && !adaptive;
-        RunRecord rec = run_one(sc, needs, comm_);
-        StudyRow row = row_for(sc, st, h, rec);
-        if (adaptive) {
-          row.label = st.label + " adaptive";
-          row.h = std::numeric_limits<double>::quiet_NaN();
-          row.tol = tol;
-        }
-        if (rec.ok) {
-          const auto& names = rec.summary.sensor_names;
-          for (const auto& s : sensors_) {
-            const size_t k = static_cast<size_t>(std::find(names.begin(), names.end(), s) - names.begin());
-            row.errors[s] = error_of(rec.summary.final_sensors[k], ref_.at_end.at(s), spec_.relative_errors);
-          }
-          if (ref_.has_state) state_errors(*sc.model, rec.summary.final_state, ref_.state, spec_.relative_errors, row.errors);
-        }
-        if (spec_.condition_number && !adaptive && rec.t.size() > 0) {
-          const ConditionNumbers c = iteration_matrix_condition(*sc.model, rec.last, row.params, h, row.scaling, comm_);
-          row.extra.emplace_back("cond_2norm", c.two_norm);
-          row.extra.emplace_back("cond_mumps1", c.mumps_cond1);
-          row.extra.emplace_back("cond_mumps2", c.mumps_cond2);
-        }
-        print_row(row);
-        res_.rows.push_back(row);
+      for (double h : spec_.h) runs.push_back({&st, h, false});
+      for (double tol : spec_.tol) runs.push_back({&st, spec_.h.front(), false, tol});
+    }
+    std::vector<RunOutcome> outcomes = run_concurrently(runs, k, t_end);
+
+    size_t first = 0;
+    if (reference_run) {
+      const RunOutcome& o = outcomes[first++];
+      if (!o.row.ok) throw SolverError("the study's reference run (" + reference_run_name() + ") failed: " + o.row.failure);
+      take_reference_run(o.final_state, o.sensor_names, o.final_sensors, o.row.steps, o.row.cpu);
+    }
+    for (size_t i = first; i < outcomes.size(); ++i) {
+      StudyRow& row = outcomes[i].row;
+      if (runs[i].tol > 0.0) {
+        row.label = runs[i].setting->label + " adaptive";
+        row.h = std::numeric_limits<double>::quiet_NaN();
+        row.tol = runs[i].tol;
       }
+      if (row.ok) {
+        const auto& names = outcomes[i].sensor_names;
+        for (const auto& s : sensors_) {
+          const size_t j = static_cast<size_t>(std::find(names.begin(), names.end(), s) - names.begin());
+          row.errors[s] = error_of(outcomes[i].final_sensors[j], ref_.at_end.at(s), spec_.relative_errors);
+        }
+        // Every run has the base scene's nodes (settings change the solver): its model measures q.
+        if (ref_.has_state) state_errors(*base.model, outcomes[i].final_state, ref_.state, spec_.relative_errors, row.errors);
+      }
+      print_row(row);
+      res_.rows.push_back(row);
     }
     if (rank_ == 0) {
-      // Rank 0 alone: a failing peer must not throw past the collective calls that follow.
-      try {
-        run_peers(t_end);
-      } catch (const std::exception& e) {
-        warn(std::string("the peers stopped: ") + e.what());
-      }
+      if (!peers_first_) run_peers_guarded(t_end);
+      for (const auto& [p, label] : peer_results_) add_peer_row(p, label);
     }
     fit_slopes();
+  }
+
+  /// Rank 0 alone: a failing peer must not throw past the collective calls that follow. The peers'
+  /// results wait in peer_results_ for the reference (their errors) and their rows' place.
+  void run_peers_guarded(double t_end) {
+    try {
+      run_peers(t_end);
+    } catch (const std::exception& e) {
+      warn(std::string("the peers stopped: ") + e.what());
+    }
   }
 
   void run_peers(double t_end) {
     const PeerSpec& p = spec_.peers;
     if (p.problem.empty()) return;
     for (double tol : p.ida) {
-      const PeerResult r = andrews_ida(tol, tol, t_end);
-      add_peer_row(r, "IDA");
+      peer_results_.emplace_back(andrews_ida(tol, tol, t_end), "IDA");
     }
     if (!p.radau.empty()) {
       const std::string script = std::string(ALPHAFLEX_SOURCE_DIR) + "/scripts/study_radau_andrews.py";
@@ -501,7 +633,7 @@ class Study {
         return;
       }
       const MixedTable tab = read_numeric_csv_mixed(out);
-      for (const auto& row : tab.rows) add_peer_row(row, "Radau");
+      for (const auto& row : tab.rows) peer_results_.emplace_back(radau_result(row), "Radau");
       res_.files.push_back(out);
     }
   }
@@ -527,7 +659,7 @@ class Study {
     return t;
   }
 
-  void add_peer_row(const std::vector<std::string>& row, const std::string& label) {
+  static PeerResult radau_result(const std::vector<std::string>& row) {
     // Columns of scripts/study_radau_andrews.py: method,rtol,atol,ok,cpu,steps,nfev,njev,nlu,message,values...
     PeerResult r;
     static const std::vector<std::string> head{"method", "rtol", "atol", "ok", "cpu", "steps", "nfev", "njev", "nlu", "message"};
@@ -546,7 +678,7 @@ class Study {
       r.names.push_back(names[k]);
       r.values.push_back(std::stod(row[head.size() + k]));
     }
-    add_peer_row(r, label);
+    return r;
   }
 
   void add_peer_row(const PeerResult& p, const std::string& label) {
@@ -931,7 +1063,8 @@ class Study {
     f << "# reference: " << res_.reference_label << "\n";
     f << "# errors: " << (spec_.relative_errors ? "relative" : "absolute")
       << " at t_end (err_q, err_v, err_lambda: infinity norms of the state against the reference run)\n";
-    f << "# cpu: process CPU time (s) of each run, summed over " << size_ << " MPI rank(s); wall: elapsed (s)\n";
+    f << "# cpu: process CPU time (s) of each run, summed over its " << (run_ranks_ > 0 ? run_ranks_ : size_)
+      << " MPI rank(s); wall: elapsed (s)\n";
     std::vector<std::string> extras;
     for (const auto& r : res_.rows)
       for (const auto& [k, v] : r.extra)
@@ -1040,6 +1173,11 @@ class Study {
   int rank_ = 0, size_ = 1;
   StudyResult res_;
   Reference ref_;
+  std::set<std::string> file_values_;          ///< sensors whose reference value is the file's
+  std::vector<std::string> reference_parts_;   ///< what the reference label lists
+  int run_ranks_ = 0;                          ///< ranks of each run (0: all, one run at a time)
+  bool peers_first_ = false;                   ///< rank 0 ran the peers while the other groups ran
+  std::vector<std::pair<PeerResult, std::string>> peer_results_;  ///< rank 0: the peers' results, labels
   std::vector<std::string> sensors_;
 };
 

@@ -30,6 +30,8 @@ struct RunSettings {
   /// Newton failure policy: up to this many successive halvings of h when a step does not converge
   /// (0: off, the run stops at the first failure); h grows back by doubling after 4 good steps.
   int step_cuts = 0;
+  /// solver.linear.low_rank: MUMPS' block low-rank dropping tolerance (0: exact factorization).
+  double low_rank = 0.0;
   double t_end = 1.0;   ///< final time (s)
   /// Adaptive steps (solver.tolerance: rtol, atol; 0, 0: fixed steps), bounds of h (s; 0: defaults).
   double tolerance_rtol = 0.0, tolerance_atol = 0.0, h_min = 0.0, h_max = 0.0;

@@ -27,6 +27,11 @@ struct FactorStatistics {
   double entries = 0.0;       ///< INFOG(29): entries in the factors, all ranks
   double memory_max_mb = 0.0; ///< INFOG(21): MB used during the factorization, largest rank
   double memory_sum_mb = 0.0; ///< INFOG(22): the same, summed over the ranks
+  /// Block low-rank factorization (MUMPS' BLR, ICNTL(35) = 2, CNTL(7) = the tolerance; Amestoy et
+  /// al. 2015, SIAM J. Sci. Comput. 37(3)): 0 when off. With it on, `entries` is still the full-rank
+  /// count INFOG(29) and `low_rank_entries` the entries the compressed factors hold, INFOG(35).
+  double low_rank_tolerance = 0.0;
+  double low_rank_entries = 0.0;
 };
 
 class LinearSolver {
@@ -35,7 +40,9 @@ class LinearSolver {
   /// docs/performance.md, "small systems").
   static constexpr int kDenseLimit = 150;
 
-  explicit LinearSolver(MPI_Comm comm);
+  /// `low_rank` > 0: MUMPS' block low-rank factorization with that dropping tolerance (CNTL(7),
+  /// relative to the norm of each block; solver.linear.low_rank); it implies the MUMPS path.
+  explicit LinearSolver(MPI_Comm comm, double low_rank = 0.0);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
@@ -71,6 +78,7 @@ class LinearSolver {
   PetscErrorCode read_statistics(PC pc);
   PetscErrorCode choose_backend(Mat A);
   PetscErrorCode factor_dense(Mat A);
+  PetscErrorCode set_low_rank(PC pc);
 
   enum class Backend { Undecided, Dense, Krylov } backend_ = Backend::Undecided;
   MPI_Comm comm_;
@@ -85,6 +93,8 @@ class LinearSolver {
   FactorStatistics stats_;
   bool workspace_failure_ = false;
   int workspace_retries_ = 0, icntl14_ = 0;
+  double low_rank_ = 0.0;
+  bool low_rank_set_ = false;  ///< ICNTL(35)/CNTL(7) given to the current MUMPS factor
 };
 
 }  // namespace alphaflex

@@ -1,0 +1,106 @@
+#!/usr/bin/python3
+"""Runs per second of `alphaflex study` on 1 rank and on N ranks in concurrent groups
+(mpirun -np N ... --ranks-per-run K), for the table in docs/performance.md (issue 22).
+
+    scripts/study_throughput.py [--exe build/alphaflex] [--ranks 2] [--ranks-per-run 1]
+                                [--repeats 3] [--study SCENE:STUDY ...] [--without-peers]
+
+For each study it runs the one-rank and the N-rank command alternately (--repeats times each, so
+that the load of a shared machine falls on both alike), takes each command's shortest wall time
+(the process from start to exit, start-up and file writing included) and counts the runs: the
+alphaflex rows of the CSV, the reference run, and the peers' rows (IDA, Radau) unless
+--without-peers (then the study is run from a copy without its `peers:` block). It prints a
+markdown table: runs, wall times, runs per second and their ratio, and checks that both CSVs have
+the same rows (scripts/../tests/study/compare_study_csv.py, time columns excepted).
+
+Every process runs in a session of its own (setsid -w, also each rank under mpirun): Linux's
+autogroup scheduling (kernel.sched_autogroup_enabled = 1, Debian's default) shares the CPU among
+sessions, not processes, so on a machine busy with other sessions the two ranks of one session
+would share one session's CPU and show no gain whatever the code does. --same-session turns this
+off (the numbers then say what a user of a busy desktop sees).
+"""
+import argparse
+import csv
+import os
+import shlex
+import subprocess
+import sys
+import tempfile
+import time
+
+import yaml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEFAULT = ["inputs/slider_crank.yaml:inputs/studies/slider_crank_convergence.yaml",
+           "inputs/andrews.yaml:inputs/studies/andrews_work_precision.yaml"]
+
+
+def study_copy(study, tmp, without_peers):
+    """The study file with its relative reference path made absolute (and no peers if asked)."""
+    with open(study) as f:
+        doc = yaml.safe_load(f)
+    s = doc["study"]
+    ref = s.get("reference", {})
+    if "file" in ref and not os.path.isabs(ref["file"]):
+        ref["file"] = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(study)), ref["file"]))
+    if without_peers:
+        s.pop("peers", None)
+    path = os.path.join(tmp, os.path.basename(study))
+    with open(path, "w") as f:
+        yaml.safe_dump(doc, f, sort_keys=False)
+    return path, s.get("name"), bool(s.get("reference", {}).get("h"))
+
+
+def count_runs(csv_path, reference_run):
+    with open(csv_path) as f:
+        rows = list(csv.DictReader(l for l in f if not l.startswith("#")))
+    return len(rows) + (1 if reference_run else 0), sum(float(r["cpu"]) for r in rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--exe", default=os.path.join(ROOT, "build", "alphaflex"))
+    p.add_argument("--mpirun", default="mpirun")
+    p.add_argument("--ranks", type=int, default=2)
+    p.add_argument("--ranks-per-run", type=int, default=1)
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--study", action="append", help="SCENE:STUDY (default: the slider-crank and Andrews convergence studies)")
+    p.add_argument("--without-peers", action="store_true")
+    p.add_argument("--same-session", action="store_true")
+    a = p.parse_args()
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    lines = [f"| study | runs | 1 rank: wall (s) | runs/s | {a.ranks} ranks, {a.ranks_per_run} per run: wall (s) | runs/s | ratio |",
+             "|---|---:|---:|---:|---:|---:|---:|"]
+    with tempfile.TemporaryDirectory() as tmp:
+        for item in a.study or DEFAULT:
+            scene, study = (os.path.join(ROOT, x) if not os.path.isabs(x) else x for x in item.split(":"))
+            copy, name, reference_run = study_copy(study, tmp, a.without_peers)
+            own = [] if a.same_session else ["setsid", "-w"]
+            base = own + [a.exe, "study", scene, "--study", copy, "--no-plots"]
+            cmds = {"1": base + ["-o", os.path.join(tmp, "one")],
+                    "N": [a.mpirun, "--oversubscribe", "-np", str(a.ranks)] + base +
+                         ["-o", os.path.join(tmp, "many"), "--ranks-per-run", str(a.ranks_per_run)]}
+            best = {"1": float("inf"), "N": float("inf")}
+            for _ in range(a.repeats):
+                for key in ("1", "N"):
+                    t0 = time.perf_counter()
+                    r = subprocess.run(cmds[key], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                    wall = time.perf_counter() - t0
+                    if r.returncode != 0:
+                        sys.exit(f"{shlex.join(cmds[key])} exited {r.returncode}:\n{r.stderr}")
+                    best[key] = min(best[key], wall)
+            one, many = (os.path.join(tmp, d, f"{name}_study.csv") for d in ("one", "many"))
+            cmp = subprocess.run([sys.executable, os.path.join(ROOT, "tests", "study", "compare_study_csv.py"), one, many],
+                                 capture_output=True, text=True)
+            if cmp.returncode != 0:
+                sys.exit(cmp.stdout + cmp.stderr)
+            runs, _ = count_runs(one, reference_run)
+            r1, rn = runs / best["1"], runs / best["N"]
+            label = os.path.basename(study) + (" (without peers)" if a.without_peers else "")
+            lines.append(f"| {label} | {runs} | {best['1']:.2f} | {r1:.2f} | {best['N']:.2f} | {rn:.2f} | {rn / r1:.2f} |")
+            print(lines[-1], file=sys.stderr, flush=True)
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
