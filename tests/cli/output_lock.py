@@ -64,7 +64,20 @@ def main():
         if first.poll() is None:
             os.killpg(first.pid, signal.SIGKILL)  # the whole job: mpirun and its ranks
         first.wait()
-    time.sleep(0.5)
+    # The ranks of a killed mpirun job end a moment after mpirun (Open MPI's launcher kills them
+    # when it loses mpirun): wait until the process the lock names is gone, then C runs.
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        try:
+            os.kill(int(pid.group(1)), 0)
+        except ProcessLookupError:
+            break
+        except PermissionError:
+            pass
+        time.sleep(0.1)
+    else:
+        fail(f"run A's process {pid.group(1)} still exists 60 s after SIGKILL to its job")
+    time.sleep(0.2)
     if not os.path.exists(lock):
         fail("run A's lock file is gone after SIGKILL: the stale case is not tested")
     third = subprocess.run(command(0.05), stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=120)
