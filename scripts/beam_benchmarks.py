@@ -11,10 +11,7 @@ rho_inf = 0 and 0.7, and writes docs/figures/beam_*.png and docs/benchmarks/beam
 Runs are cached in a temp dir keyed on the executable, the scene and the settings.
 """
 import argparse
-import hashlib
 import os
-import subprocess
-import sys
 import tempfile
 
 import h5py
@@ -23,12 +20,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from script_runs import FIG, REF, ROOT, run_cached  # noqa: E402  (also puts python/ on the path)
 import alphaflex_results as ar  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-REF = os.path.join(ROOT, "tests", "reference")
-FIG = os.path.join(ROOT, "docs", "figures")
 CACHE = os.path.join(tempfile.gettempdir(), "alphaflex_beam_benchmarks")
 EXE = None
 
@@ -43,17 +37,7 @@ SONNEVILLE_MIN = (2.67, -4.13)
 def run(scene, **sets):
     """Run alphaflex once (cached); return (sensor table, stats, output dir)."""
     sets = {k.replace("__", "."): str(v) for k, v in sets.items()}
-    scene_path = os.path.join(ROOT, "inputs", scene + ".yaml")
-    key = hashlib.sha1(repr((EXE, os.path.getmtime(EXE), scene_path, os.path.getmtime(scene_path),
-                             sorted(sets.items()))).encode()).hexdigest()[:16]
-    out = os.path.join(CACHE, f"{scene}_{key}")
-    if not os.path.exists(os.path.join(out, scene + ".summary.json")):
-        cmd = [EXE, "run", scene_path, "-o", out]
-        for k, v in sets.items():
-            cmd += ["--set", f"{k}={v}"]
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        if p.returncode != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    out = run_cached(EXE, scene, CACHE, sets)
     j = ar.load_summary(out, scene)  # OUTDIR/NAME.summary.json (python/alphaflex_results.py)
     wall = j["wall_time"]
     phases = {k: wall[k]["percent"] for k in ("assembly", "factorization", "solve", "output", "other")}

@@ -9,10 +9,8 @@ and writes fig2, fig3, fig6, fig7, fig8, fig9 PNGs and the results page paper_nu
 docs/figures/. Runs are cached in a temp dir keyed on the executable, the scene and the settings.
 """
 import argparse
-import hashlib
 import os
 import subprocess
-import sys
 import tempfile
 import time
 
@@ -21,11 +19,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from script_runs import REF, ROOT, run_cached  # noqa: E402  (also puts python/ on the path)
 import alphaflex_results as ar  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-REF = os.path.join(ROOT, "tests", "reference")
 REF_LABEL = "reference: independent DOP853 solution, tests/reference"
 CACHE = os.path.join(tempfile.gettempdir(), "alphaflex_paper_figures")
 EXE = None  # set in main()
@@ -36,17 +32,7 @@ def run(scene, h, rho=0.7, **extra):
     """Run alphaflex once (cached); return (sensor table, stats dict)."""
     sets = {"solver.h": repr(h), "solver.rho_inf": repr(rho), "output.hdf5": "off"}
     sets.update({k.replace("__", "."): str(v) for k, v in extra.items()})
-    scene_path = os.path.join(ROOT, "inputs", scene + ".yaml")
-    key = hashlib.sha1(repr((EXE, os.path.getmtime(EXE), scene_path, os.path.getmtime(scene_path),
-                             sorted(sets.items()))).encode()).hexdigest()[:16]
-    out = os.path.join(CACHE, f"{scene}_{key}")
-    if not os.path.exists(os.path.join(out, scene + ".summary.json")):
-        cmd = [EXE, "run", scene_path, "-o", out]
-        for k, v in sets.items():
-            cmd += ["--set", f"{k}={v}"]
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        if p.returncode != 0:
-            raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    out = run_cached(EXE, scene, CACHE, sets)
     j = ar.load_summary(out, scene)  # OUTDIR/NAME.summary.json (python/alphaflex_results.py)
     stats = {"newton_mean": j["newton"]["mean_per_step"], "newton_max": j["newton"]["max"],
              "wall_us_per_step": j["wall_time"]["us_per_step"]}

@@ -11,8 +11,6 @@ docs/figures/shell_sze.png and docs/benchmarks/shells.md. --quick skips the fine
 """
 import argparse
 import os
-import subprocess
-import sys
 import tempfile
 
 import matplotlib
@@ -20,12 +18,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from script_runs import FIG, REF, ROOT, run_scene  # noqa: E402  (also puts python/ on the path)
 import alphaflex_results as ar  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-REF = os.path.join(ROOT, "tests", "reference")
-FIG = os.path.join(ROOT, "docs", "figures")
 OUT = os.path.join(tempfile.gettempdir(), "alphaflex_shell_benchmarks")
 
 # scene, reference table, sensors, paper's mesh parameters, the same twice as fine, title
@@ -52,12 +47,7 @@ def read_ref(name):
 def run(exe, scene, sets, tag):
     """Run a scene; return (sensor table, output directory)."""
     out = os.path.join(OUT, f"{scene}_{tag}")
-    cmd = [exe, "run", os.path.join(ROOT, "inputs", scene + ".yaml"), "-o", out]
-    for k, v in sets.items():
-        cmd += ["--set", f"{k}={v}"]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        raise RuntimeError(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    run_scene(exe, scene, out, sets)
     return np.genfromtxt(os.path.join(out, scene + ".csv"), delimiter=",", names=True), out
 
 

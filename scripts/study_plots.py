@@ -85,6 +85,13 @@ def plain_ticks(fig):
                 axis.set_minor_formatter(NullFormatter())
 
 
+def grid_and_legend(*axes):
+    """The log-log grid and the small legend every chart of several series has."""
+    for a in axes:
+        a.grid(True, which="both", alpha=0.3)
+        a.legend(fontsize=7)
+
+
 def suptitle(fig, text, fontsize=9):
     """A figure title wrapped to the figure's width (never cut off), with room kept for it."""
     width = int(fig.get_figwidth() * 72 / (0.55 * fontsize))  # characters per line at this size
@@ -239,8 +246,7 @@ def convergence(csv_path, comments, rows, base):
                 hg = np.array([h0, 10 * h0])
                 ax.loglog(hg, e0 * (hg / h0) ** -2, "k--", lw=1, label="∝ h⁻² (round-off, eq. 34)")
         ax.set(xlabel="h (s)", ylabel="error in " + en, title=en)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
+        grid_and_legend(ax)
     for k in range(len(names), nr * nc):
         axes[k // nc][k % nc].axis("off")
     suptitle(fig, f"{name}: convergence at t_end (least-squares slopes over the h whose errors are above round-off and the reference's accuracy)\n{ref}")
@@ -263,9 +269,7 @@ def convergence(csv_path, comments, rows, base):
                 ax[1].plot(a, b, "rx", ms=10, mew=2)
     ax[0].set(xlabel="h (s)", ylabel="Newton iterations per step (mean)", title="Newton iterations")
     ax[1].set(xlabel="h (s)", ylabel="CPU time per step (µs)", title="time per step (red x: run failed)")
-    for a in ax:
-        a.grid(True, which="both", alpha=0.3)
-        a.legend(fontsize=7)
+    grid_and_legend(*ax)
     suptitle(fig, f"{name}: cost ({cpu_note})")
     save(fig, base + "_cost.png")
 
@@ -281,9 +285,7 @@ def convergence(csv_path, comments, rows, base):
         ax[0].loglog(hs, c0 * (hs / hs[-1]) ** -4, "k:", lw=1, label="∝ h⁻⁴")
         ax[0].set(xlabel="h (s)", ylabel="σ_max/σ_min", title="2-norm condition number of S_t (dense SVD)")
         ax[1].set(xlabel="h (s)", ylabel="RINFOG(10)", title="MUMPS cond1 (componentwise, ICNTL(11)=1)")
-        for a in ax:
-            a.grid(True, which="both", alpha=0.3)
-            a.legend(fontsize=7)
+        grid_and_legend(*ax)
         suptitle(fig, f"{name}: conditioning of the iteration matrix at t_end")
         save(fig, base + "_conditioning.png")
 
@@ -376,8 +378,7 @@ def blow_up(csv_path, comments, rows, base):
             ax.semilogy(nn, g[k] * gp ** (nn - n[k]), ":", color=line.get_color(), lw=2)
     ax.set(xlabel="step n", ylabel="‖λ_{n+1} − 2λ_n + λ_{n−1}‖∞",
            title="growth of the multipliers' second difference (dotted: |ζ|ⁿ of the largest root of ϱ, σ)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    grid_and_legend(ax)
     suptitle(fig, f"{name}: parameters outside the stability conditions (eq. 18, 20)")
     save(fig, base + "_blow_up.png")
 
@@ -398,8 +399,7 @@ def fidelity(csv_path, comments, rows, base):
                     ax[0].annotate(p[2], (p[0], p[1]), fontsize=7, xytext=(3, 3), textcoords="offset points")
     ax[0].set(xlabel="CPU time (s)", ylabel="max over t of |difference| / max |reference|",
               title="sensor difference to the reference variant vs cost")
-    ax[0].grid(True, which="both", alpha=0.3)
-    ax[0].legend(fontsize=7)
+    grid_and_legend(ax[0])
     epath = base + "_energy.csv"
     if os.path.exists(epath):
         er = ar.load_study(epath).rows

@@ -275,13 +275,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
 
   const double h = rs.h;
   // The step policy (driver/step_controller.hpp): fixed, cut-back on Newton failures, or adaptive.
-  AdaptiveOptions adaptive;
-  adaptive.rtol = rs.tolerance_rtol;
-  adaptive.atol = rs.tolerance_atol;
-  adaptive.h_min = rs.h_min;
-  adaptive.h_max = rs.h_max;
-  adaptive.output_dt = rs.output_dt;
-  adaptive.breakpoints = rs.breakpoints;
+  const AdaptiveOptions adaptive{rs.tolerance_rtol, rs.tolerance_atol, rs.h_min, rs.h_max, rs.output_dt, rs.breakpoints};
   const std::unique_ptr<StepController> controller = make_step_controller(h, rs.t_end, rs.step_cuts, adaptive);
   const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
   Checkpointer checkpointer(sub, writer.get(), checkpoint_path, rs.parameters, h, rs.checkpoint_keep);
@@ -346,10 +340,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   sum.steps = static_cast<int>(counters.steps);
   sum.newton_total = counters.newton_total;
   sum.newton_max = counters.newton_max;
-  sum.checkpoints = counters.checkpoints;
-  sum.checkpoint_bytes = counters.checkpoint_bytes;
-  sum.checkpoint = counters.checkpoint;
-  sum.checkpoint_time = counters.checkpoint_time;
+  static_cast<CheckpointStats&>(sum) = counters;
   const StepControllerState& st_end = controller->state();
   sum.step_cuts = static_cast<int>(st_end.newton_failures);
   sum.rejected_steps = st_end.rejected;

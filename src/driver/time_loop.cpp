@@ -5,11 +5,45 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <type_traits>
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/fault_injection.hpp"
 
 namespace alphaflex {
+
+namespace {
+
+// The step controller's state and the error estimator's history as a checkpoint keeps them
+// (io/checkpoint.hpp): one list of fields for both directions, `store` (state → position) when a
+// checkpoint is written and `load` (position → state) on a restart, so the two cannot drift apart.
+const auto store = [](auto& position_field, const auto& state_field) { position_field = state_field; };
+const auto load = [](const auto& position_field, auto& state_field) {
+  state_field = static_cast<std::decay_t<decltype(state_field)>>(position_field);
+};
+
+// Where the steps go on: the step size, its anchor and the PI controller's memory. A restart with
+// another solver.h (fixed steps) starts a new anchor instead (TimeLoop::restore).
+template <class Position, class State, class Copy>
+void anchor_fields(Position& p, State& s, Copy copy) {
+  copy(p.h, s.h), copy(p.t_anchor, s.t_anchor), copy(p.h_anchor, s.h_anchor);
+  copy(p.k, s.k), copy(p.error_prev, s.error_prev), copy(p.h_max, s.h_max);
+}
+
+// What the steps so far were: the cut-back policy's counts and the accepted and rejected steps.
+template <class Position, class State, class Copy>
+void count_fields(Position& p, State& s, Copy copy) {
+  copy(p.cuts_in_row, s.cuts_in_row), copy(p.good_steps, s.good_steps), copy(p.step_cuts, s.newton_failures);
+  copy(p.h_min, s.h_min), copy(p.accepted, s.accepted), copy(p.rejected, s.rejected);
+}
+
+template <class Position, class History, class Copy>
+void history_fields(Position& p, History& hist, Copy copy) {
+  copy(p.history_count, hist.count), copy(p.history_h1, hist.h1), copy(p.history_h2, hist.h2);
+  copy(p.history_m1, hist.m1), copy(p.history_m2, hist.m2);
+}
+
+}  // namespace
 
 Checkpointer::Checkpointer(const Subdomain& sub, ResultsWriter* writer, std::string path, AlphaParameters parameters, double h,
                            int keep)
@@ -33,33 +67,18 @@ void Checkpointer::write(long n, long last_written, const MechanicalState& s, Ge
 
 RunPosition Checkpointer::position(long n, long last_written, const GeneralizedAlpha& integrator, const StepController& c,
                                    const PositionErrorEstimator& estimator, const LoopCounters& counters) const {
-  const StepControllerState& st = c.state();
   RunPosition pos;
   pos.step = n;
-  pos.h = st.h;
-  pos.cuts_in_row = st.cuts_in_row;
-  pos.good_steps = st.good_steps;
+  pos.last_written = last_written;
   pos.newton_total = counters.newton_total;
   pos.newton_max = counters.newton_max;
-  pos.step_cuts = st.newton_failures;
-  pos.h_min = st.h_min;
-  pos.last_written = last_written;
   pos.results = writer_->position();
   pos.controller = true;
-  pos.t_anchor = st.t_anchor;
-  pos.h_anchor = st.h_anchor;
-  pos.k = st.k;
-  pos.error_prev = st.error_prev;
-  pos.h_max = st.h_max;
   pos.h_auxiliary = integrator.auxiliary_step();
-  pos.accepted = st.accepted;
-  pos.rejected = st.rejected;
-  const PositionErrorEstimator::History& hist = estimator.history();
-  pos.history_count = hist.count;
-  pos.history_h1 = hist.h1;
-  pos.history_h2 = hist.h2;
-  pos.history_m1 = hist.m1;
-  pos.history_m2 = hist.m2;
+  const StepControllerState& st = c.state();
+  anchor_fields(pos, st, store);
+  count_fields(pos, st, store);
+  history_fields(pos, estimator.history(), store);
   return pos;
 }
 
@@ -73,35 +92,23 @@ TimeLoop::TimeLoop(const Subdomain& sub, GeneralizedAlpha& integrator, StepContr
 
 void TimeLoop::restore(const Checkpoint& ck, double h) {
   StepControllerState st = controller_.state();
-  const RunPosition& cp = ck.position;
   const bool same_h = std::fabs(ck.scene_h - h) <= 1e-14 * h;
+  const RunPosition& cp = ck.position;
   if (cp.controller && (same_h || controller_.estimates_error())) {
-    st.h = cp.h;
-    st.t_anchor = cp.t_anchor;
-    st.h_anchor = cp.h_anchor;
-    st.k = cp.k;
-    st.error_prev = cp.error_prev;
-    st.h_max = cp.h_max;
+    anchor_fields(cp, st, load);
   } else {
     st.h = controller_.variable() ? std::min(cp.h, h) : h;
     st.t_anchor = ck.state.t;
     st.h_anchor = st.h;
     st.k = 0;
   }
-  st.cuts_in_row = cp.cuts_in_row;
-  st.good_steps = cp.good_steps;
-  st.newton_failures = cp.step_cuts;
-  st.h_min = cp.h_min;
-  st.accepted = cp.controller ? cp.accepted : cp.step;
-  st.rejected = cp.rejected;
+  count_fields(cp, st, load);
+  // A checkpoint without the controller's state counts every step taken as accepted.
+  if (!cp.controller) st.accepted = cp.step;
   controller_.set_state(st);
   integrator_.set_auxiliary(ck.auxiliary, cp.controller ? cp.h_auxiliary : cp.h);
   PositionErrorEstimator::History hist;
-  hist.count = static_cast<int>(cp.history_count);
-  hist.h1 = cp.history_h1;
-  hist.h2 = cp.history_h2;
-  hist.m1 = cp.history_m1;
-  hist.m2 = cp.history_m2;
+  history_fields(cp, hist, load);
   estimator_.set_history(hist);
 }
 

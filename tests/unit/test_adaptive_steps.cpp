@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/driver/step_controller.hpp"
@@ -180,21 +181,15 @@ TEST(StepControllerPlan, FixedAndAdaptiveLanding) {
 
 TEST(AdaptiveSteps, BadKeysAreNamed) {
   const std::string base = "name: x\nbodies: [{name: b, type: particle, mass: 1, position: [0, 0]}]\n";
-  EXPECT_NE(input_error_of([&] { read_scene_text(base + "solver: {tolerance: {rtol: 0}}\n", "x.yaml"); })
-                .find("solver.tolerance: expected rtol > 0 or atol > 0"),
-            std::string::npos);
-  EXPECT_NE(input_error_of([&] { read_scene_text(base + "solver: {h_min: 1e-6}\n", "x.yaml"); })
-                .find("solver.h_min: only with solver.tolerance"),
-            std::string::npos);
-  EXPECT_NE(input_error_of([&] { read_scene_text(base + "solver: {tolerance: {rtol: 1e-4}, step_cuts: 3}\n", "x.yaml"); })
-                .find("solver.step_cuts: not together with solver.tolerance"),
-            std::string::npos);
-  EXPECT_NE(input_error_of([&] { read_scene_text(base + "solver: {tolerance: {rtol: 1e-4}, h_min: 1e-2, h_max: 1e-3}\n", "x.yaml"); })
-                .find("solver.h_min: exceeds solver.h_max"),
-            std::string::npos);
-  EXPECT_NE(input_error_of([&] { read_scene_text(base + "solver: {h: 1e-3}\noutput: {dt: 2.5e-3}\n", "x.yaml"); })
-                .find("output.dt: expected a multiple of solver.h"),
-            std::string::npos);
+  // Each scene's tail and the message its error must contain.
+  const std::pair<std::string, std::string> cases[] = {
+      {"solver: {tolerance: {rtol: 0}}\n", "solver.tolerance: expected rtol > 0 or atol > 0"},
+      {"solver: {h_min: 1e-6}\n", "solver.h_min: only with solver.tolerance"},
+      {"solver: {tolerance: {rtol: 1e-4}, step_cuts: 3}\n", "solver.step_cuts: not together with solver.tolerance"},
+      {"solver: {tolerance: {rtol: 1e-4}, h_min: 1e-2, h_max: 1e-3}\n", "solver.h_min: exceeds solver.h_max"},
+      {"solver: {h: 1e-3}\noutput: {dt: 2.5e-3}\n", "output.dt: expected a multiple of solver.h"}};
+  for (const auto& c : cases)
+    EXPECT_NE(input_error_of([&] { read_scene_text(base + c.first, "x.yaml"); }).find(c.second), std::string::npos) << c.first;
 }
 
 // The study's tolerance axis (study.tol): read in mode convergence, refused elsewhere.

@@ -514,18 +514,30 @@ TEST(JointSpringDamper, PendulumOnARotationalSpringHasTheClosedFormSmallOscillat
   EXPECT_LE(err, 2e-4);
 }
 
+namespace {
+
+// A flywheel (inertia 0.04 kg m² about z) at `position` on a revolute joint `shaft` to the ground,
+// driven by a DC motor `dc` (stall torque T_s = 10 N m, no-load speed w0 = 100 rad/s).
+std::string flywheel_on_dc_motor(const std::string& name, const std::string& solver, const std::string& position,
+                                 const std::string& sensors) {
+  return "name: " + name + "\ndimension: 3\nparameters: {T_s: 10, w0: 100}\nsolver: " + solver +
+         "\nbodies:\n  - {name: wheel, type: rigid_body, mass: 5, inertia: [0.02, 0.02, 0.04], position: " + position +
+         "}\njoints:\n  - {name: shaft, type: revolute, body1: wheel, location: [0, 0, 0], axis: [0, 0, 1]}\n"
+         "forces:\n  - {name: dc, type: joint_motor, joint: shaft, torque: \"T_s*(1 - speed/w0)\"}\nsensors:\n" +
+         sensors;
+}
+
+}  // namespace
+
 TEST(JointMotor, DcMotorSpinsUpAFlywheelAlongTheClosedFormSpeedOverManyTurns) {
   // J ω̇ = T_s (1 − ω/ω₀): ω(t) = ω₀ (1 − e^(−t/τ)), θ(t) = ω₀ (t − τ (1 − e^(−t/τ))), τ = J ω₀ / T_s
   // (J = 0.04 kg m², T_s = 10 N m, ω₀ = 100 rad/s: τ = 0.4 s; θ(1 s) = 63 rad, ten turns: the
   // joint angle is unwrapped). The flywheel spins about z on a revolute joint to the ground.
-  const RunSummary r = run_text(
-      "name: dc_motor\ndimension: 3\nparameters: {T_s: 10, w0: 100}\nsolver: {rho_inf: 0.9, h: 0.001, t_end: 1.0}\n"
-      "bodies:\n  - {name: wheel, type: rigid_body, mass: 5, inertia: [0.02, 0.02, 0.04], position: [0, 0, 0]}\n"
-      "joints:\n  - {name: shaft, type: revolute, body1: wheel, location: [0, 0, 0], axis: [0, 0, 1]}\n"
-      "forces:\n  - {name: dc, type: joint_motor, joint: shaft, torque: \"T_s*(1 - speed/w0)\"}\n"
-      "sensors:\n  - {name: angle, type: joint_angle, joint: shaft}\n  - {name: speed, type: joint_speed, joint: shaft}\n"
-      "  - {name: torque, type: force_output, element: dc, component: drive}\n",
-      "dc_motor.yaml");
+  const RunSummary r = run_text(flywheel_on_dc_motor("dc_motor", "{rho_inf: 0.9, h: 0.001, t_end: 1.0}", "[0, 0, 0]",
+                                                     "  - {name: angle, type: joint_angle, joint: shaft}\n"
+                                                     "  - {name: speed, type: joint_speed, joint: shaft}\n"
+                                                     "  - {name: torque, type: force_output, element: dc, component: drive}\n"),
+                                "dc_motor.yaml");
   const double tau = 0.04 * 100 / 10;
   double worst_w = 0.0, worst_a = 0.0;
   for (size_t i = 0; i < r.times_out.size(); ++i) {
@@ -621,14 +633,10 @@ TEST(EnergySensors, KineticAndStrainEnergiesOfASpringMassExchangeAtConstantSum) 
 }
 
 TEST(EnergySensors, ConstraintViolationOfAJointAndOfItsCoordinateLinkStaysAtRoundOff) {
-  const RunSummary r = run_text(
-      "name: violation\ndimension: 3\nparameters: {T_s: 10, w0: 100}\nsolver: {rho_inf: 0.9, h: 0.002, t_end: 0.2}\n"
-      "bodies:\n  - {name: wheel, type: rigid_body, mass: 5, inertia: [0.02, 0.02, 0.04], position: [0.1, 0, 0]}\n"
-      "joints:\n  - {name: shaft, type: revolute, body1: wheel, location: [0, 0, 0], axis: [0, 0, 1]}\n"
-      "forces:\n  - {name: dc, type: joint_motor, joint: shaft, torque: \"T_s*(1 - speed/w0)\"}\n"
-      "sensors:\n  - {name: shaft, type: constraint_violation, joint: shaft}\n"
-      "  - {name: link, type: constraint_violation, joint: shaft.angle}\n",
-      "violation.yaml");
+  const RunSummary r = run_text(flywheel_on_dc_motor("violation", "{rho_inf: 0.9, h: 0.002, t_end: 0.2}", "[0.1, 0, 0]",
+                                                     "  - {name: shaft, type: constraint_violation, joint: shaft}\n"
+                                                     "  - {name: link, type: constraint_violation, joint: shaft.angle}\n"),
+                                "violation.yaml");
   for (const auto& row : r.sensor_history) {
     EXPECT_LE(row[0], 1e-12);
     EXPECT_LE(row[1], 1e-12);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "alphaflex/io/checkpoint.hpp"
 #include "alphaflex/io/scene.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
 
@@ -33,7 +34,8 @@ struct RunOptions {
   bool stop_after_start = false;
 };
 
-struct RunSummary {
+/// A run's figures; the checkpoints written (CheckpointStats, io/checkpoint.hpp) are the time loop's.
+struct RunSummary : CheckpointStats {
   int steps = 0;              ///< time steps (load steps in a static analysis)
   int static_steps = 0, static_cuts = 0;  ///< load steps and step cuts of the quasi-static solve
   int step_cuts = 0;          ///< halvings of h after failed dynamic steps (solver.step_cuts)
@@ -66,11 +68,7 @@ struct RunSummary {
   /// Resident memory that reading the scene (and its mesh) and building its whole model took on
   /// the largest rank: the part every rank holds whatever their number (set by the command).
   double scene_memory_mb = -1.0;
-  // Checkpoints written (io/checkpoint.hpp): how many, the size of the last, the time they took.
-  int checkpoints = 0;
-  long long checkpoint_bytes = 0;
-  double checkpoint_time = 0.0;
-  std::string checkpoint, restarted_from;  ///< the last checkpoint's path; the checkpoint the run restarted from
+  std::string restarted_from;  ///< the checkpoint the run restarted from
   double restart_time = 0.0;
   std::string h5, xdmf, csv;
 };

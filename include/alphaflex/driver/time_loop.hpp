@@ -19,14 +19,10 @@
 namespace alphaflex {
 
 /// What the loop counts (the run's summary copies them).
-struct LoopCounters {
+struct LoopCounters : CheckpointStats {
   long steps = 0;  ///< accepted time steps
   long newton_total = 0;
   int newton_max = 0;
-  int checkpoints = 0;
-  long long checkpoint_bytes = 0;
-  double checkpoint_time = 0.0;
-  std::string checkpoint;  ///< the last checkpoint's path ("" if none)
 };
 
 /// An accepted step (or the initial state, step 0), as the observers see it.

@@ -47,6 +47,15 @@ struct RunPosition {
   ResultsPosition results;       ///< committed sensor rows, output steps and parts
 };
 
+/// The checkpoints a run wrote: how many, the size of the last, the time they took, the last's path
+/// ("" if none). Counted by the time loop (driver/time_loop.hpp), reported in the run's summary.
+struct CheckpointStats {
+  int checkpoints = 0;
+  long long checkpoint_bytes = 0;
+  double checkpoint_time = 0.0;
+  std::string checkpoint;
+};
+
 struct Checkpoint {
   MechanicalState state;      ///< this rank's subdomain's state
   Eigen::VectorXd auxiliary;  ///< the auxiliary variable a, local
