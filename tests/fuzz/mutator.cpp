@@ -349,15 +349,21 @@ void scene_mutation(Lines& l, std::string& text, Rng& rng, std::vector<std::stri
       const size_t indent = s.find_first_not_of(' ');
       size_t b = 0, e = 0;
       switch (rng.below(4)) {
-        case 0:  // the same line again: its key twice in one map (parameters: and mesh.parameters: among others)
-          l.lines.insert(l.lines.begin() + static_cast<long>(i) + 1, s);
-          log.push_back(where(i) + ": repeated " + shown(s));
+        // Cases 0, 1 and 3 insert a line: `s` refers into l.lines, which the insertion may move,
+        // so the line is copied first (the log reads the copy).
+        case 0: {  // the same line again: its key twice in one map (parameters: and mesh.parameters: among others)
+          const std::string line = s;
+          l.lines.insert(l.lines.begin() + static_cast<long>(i) + 1, line);
+          log.push_back(where(i) + ": repeated " + shown(line));
           return;
-        case 1:  // a YAML merge key, which yaml-cpp reads as an ordinary key
+        }
+        case 1: {  // a YAML merge key, which yaml-cpp reads as an ordinary key
+          const std::string line = s;
           l.lines.insert(l.lines.begin() + static_cast<long>(i) + 1,
                          std::string(indent == std::string::npos ? 0 : indent, ' ') + "<<: {mass: 1}");
-          log.push_back(where(i) + ": merge key inserted after " + shown(s));
+          log.push_back(where(i) + ": merge key inserted after " + shown(line));
           return;
+        }
         case 2:  // a control character (tab, NUL, newline, DEL) inside a value
           if (value_span(s, b, e)) {
             const char* c = rng.pick(std::vector<const char*>{"\\t", "\\0", "\\n", "\\x7f"});
@@ -367,10 +373,12 @@ void scene_mutation(Lines& l, std::string& text, Rng& rng, std::vector<std::stri
             return;
           }
           break;
-        default:  // a second document
+        default: {  // a second document
+          const std::string line = s;
           l.lines.insert(l.lines.begin() + static_cast<long>(i) + 1, "---");
-          log.push_back(where(i) + ": '---' inserted after " + shown(s));
+          log.push_back(where(i) + ": '---' inserted after " + shown(line));
           return;
+        }
       }
     }
   }
