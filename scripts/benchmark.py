@@ -72,6 +72,23 @@ def parse(outdir, scene):
     return out
 
 
+def replace_between_markers(begin, end, text):
+    """Puts `text` between the lines `begin` and `end` of docs/performance_notes.md (the hand-written
+    part, which this script copies under its tables) and of docs/performance.md (the copy), so
+    that scripts measuring one section (modified_newton_policy.py, performance_model.py) and a
+    regeneration by this script keep each other's results."""
+    for name in ("performance_notes.md", "performance.md"):
+        path = os.path.join(ROOT, "docs", name)
+        with open(path) as fh:
+            doc = fh.read()
+        if begin not in doc or end not in doc:
+            raise SystemExit(f"{path}: no markers {begin} … {end}")
+        head, rest = doc.split(begin, 1)
+        _, tail = rest.split(end, 1)
+        with open(path, "w") as fh:
+            fh.write(head + begin + "\n" + text + "\n" + end + tail)
+
+
 def alphaflex(exe, scene, outdir, sets, ranks=1, extra=()):
     cmd = [exe, "run", scene, "-o", outdir]
     for s in sets:

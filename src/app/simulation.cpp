@@ -23,7 +23,9 @@
 #include "alphaflex/driver/step_controller.hpp"
 #include "alphaflex/driver/time_loop.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
+#include "alphaflex/integrators/round_off_floor.hpp"
 #include "alphaflex/io/checkpoint.hpp"
+#include "alphaflex/io/sensor_schedule.hpp"
 #include "alphaflex/io/results_writer.hpp"
 #include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
@@ -138,14 +140,21 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   std::unique_ptr<ResultsWriter>& writer = o.writer;
   if (opt.write_results && !opt.stop_after_start)
     writer = std::make_unique<ResultsWriter>(sub, opt.outdir, scene.name, rs.hdf5, rs.commit_interval,
-                                             restarting ? &ck.position.results : nullptr);
+                                             restarting ? &ck.position.results : nullptr, rs.sensors);
   if (writer)
     for (const auto& w : writer->warnings()) sum.warnings.push_back(w);
 
   integrator.times().setup += MPI_Wtime() - wall0;  // partition, subdomain, preallocation, files
   std::vector<double> values;
+  // Sensor rows (output.sensors, output.sensors_dt; io/sensor_schedule.hpp). The values are
+  // evaluated only for a row, a study's history or the last step (the summary's final values); a
+  // static analysis writes every load step it records.
+  const bool dynamic = rs.analysis != Analysis::Static;
+  SensorSchedule sensor_rows(rs.sensors, dynamic ? rs.sensors_dt : 0.0, restarting ? ck.state.t : 0.0, !restarting);
   auto record = [&](const MechanicalState& st, bool fields) {
-    values = sensor_values(sub, st);
+    const bool last = !dynamic || st.t >= rs.t_end - 1e-12 * std::max(1.0, std::fabs(rs.t_end));
+    const bool row = sensor_rows.due(st.t, last);
+    if (row || last || opt.keep_history) values = sensor_values(sub, st);
     // The observer sees the whole state in model order (a gather, O(model), only when it is set).
     if (opt.on_step) opt.on_step(sub.size() == 1 ? st : sub.gather(st));
     if (opt.keep_history) {
@@ -154,7 +163,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     }
     const double t0 = MPI_Wtime();
     if (writer) {
-      writer->write_sensors(st.t, values);
+      if (row) writer->write_sensors(st.t, values);
       if (fields) writer->write_fields(st);
     }
     integrator.times().output += MPI_Wtime() - t0;
@@ -283,6 +292,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   ls.output_every = rs.output_every;
   ls.checkpoint_steps = rs.checkpoint_steps;
   ls.checkpoint_wall = rs.checkpoint_wall;
+  ls.checkpoint_at_end = rs.checkpoint_at_end;
   ls.scene_file = scene.file;
   ls.outdir = opt.outdir;
   ls.stop_signal = [] { return stop_signal(); };
@@ -299,20 +309,6 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     const std::string w = fixed->shortened_last_step(s.t, restarting);
     if (!w.empty()) sum.warnings.push_back(w);
   }
-  {
-    // Index-3 round-off floor (paper Sec. 3.3): q carries round-off ε‖q‖, which q̈ = β'Δq and λ
-    // amplify by β' ~ 1/(βh²). Warn when that floor is no longer small against q̈ itself.
-    const double floor = std::numeric_limits<double>::epsilon() * std::max(sub.max_abs(s.q), 1e-300) * rs.parameters.beta_prime(h);
-    const double acc = sub.max_abs(s.qdd);
-    if (floor > 1e-3 * acc) {
-      std::ostringstream os;
-      os.precision(3);
-      os << "at h = " << h << " s accelerations and multipliers carry round-off of about " << floor
-         << " (in q̈ units; |q̈0| = " << acc << "): ε‖q‖/(βh²) of the index-3 formulation. Use a larger h.";
-      sum.warnings.push_back(os.str());
-    }
-  }
-
   if (opt.verbose && rank == 0)
     for (const auto& w : sum.warnings) std::cout << "  warning: " << w << std::endl;
 
@@ -335,8 +331,17 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   } else {
     loop.observe(0, s, true);
   }
+  const double acc_start = sub.max_abs(s.qdd);
   loop.run(s, first, last_written, counters);
   progress.finish();
+  {
+    const std::string w = round_off_floor_warning(rs.parameters, controller->state().h_min > 0.0 ? controller->state().h_min : h,
+                                                  sub.max_abs(s.q), std::max(acc_start, sub.max_abs(s.qdd)));
+    if (!w.empty()) {
+      sum.warnings.push_back(w);
+      if (opt.verbose && rank == 0) std::cout << "  warning: " << w << std::endl;
+    }
+  }
   sum.steps = static_cast<int>(counters.steps);
   sum.newton_total = counters.newton_total;
   sum.newton_max = counters.newton_max;

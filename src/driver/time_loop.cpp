@@ -240,7 +240,8 @@ void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopC
     if (fields) last_written = n;
     if (!last) due(n);
   }
-  checkpointer_.write(n, last_written, s, integrator_, controller_, estimator_, counters);  // the end of a run always leaves one
+  if (settings_.checkpoint_at_end)
+    checkpointer_.write(n, last_written, s, integrator_, controller_, estimator_, counters);  // the end of a run leaves one
 }
 
 }  // namespace alphaflex

@@ -27,7 +27,7 @@ bool root_decides(const Subdomain& sub, bool decision) {
 }  // namespace
 
 ResultsWriter::ResultsWriter(const Subdomain& sub, const std::string& outdir, const std::string& name, bool hdf5,
-                             double commit_interval, const ResultsPosition* resume)
+                             double commit_interval, const ResultsPosition* resume, bool csv)
     : sub_(sub), root_(sub.rank() == 0), hdf5_(hdf5), commit_interval_(commit_interval),
       grids_(std::make_unique<std::vector<io_detail::ElementGrid>>(io_detail::element_grids(sub.global_model()))) {
   namespace fs = std::filesystem;
@@ -35,7 +35,7 @@ ResultsWriter::ResultsWriter(const Subdomain& sub, const std::string& outdir, co
   const fs::path dir = fs::absolute(outdir);
   h5_path_ = (dir / (name + ".h5")).string();
   xdmf_path_ = (dir / (name + ".xdmf")).string();
-  csv_path_ = (dir / (name + ".csv")).string();
+  if (csv) csv_path_ = (dir / (name + ".csv")).string();
   const std::string parts_name = name + ".h5.parts";
   parts_dir_ = (dir / parts_name).string();
   // Rank 0 makes the directories and the CSV; the ranks agree before any collective file call.
@@ -60,7 +60,7 @@ ResultsWriter::ResultsWriter(const Subdomain& sub, const std::string& outdir, co
     }
     std::vector<std::string> sensors;
     for (const auto& s : global.sensors()) sensors.push_back(s.name);
-    csv_ = std::make_unique<io_detail::SensorCsv>(csv_path_, sensors);
+    if (csv) csv_ = std::make_unique<io_detail::SensorCsv>(csv_path_, sensors);
   }
   agree<OutputError>(sub, err);
   if (hdf5_) {
@@ -73,7 +73,7 @@ ResultsWriter::ResultsWriter(const Subdomain& sub, const std::string& outdir, co
     return;
   }
   if (root_) {
-    err = csv_->create();
+    if (csv_) err = csv_->create();
     // Parts of an earlier run in the same directory are not ours: remove them, and NAME.h5.
     if (err.empty() && hdf5_) {
       parts_file_->remove_from(0);
@@ -184,7 +184,7 @@ void ResultsWriter::resume_from(const ResultsPosition& at) {
   std::string err;
   if (root_) {
     std::string warning;
-    err = csv_->resume(at.csv_rows, warning);
+    if (csv_) err = csv_->resume(at.csv_rows, warning);
     if (!warning.empty()) warnings_.push_back(warning);
   }
   csv_rows_ = at.csv_rows;

@@ -124,16 +124,23 @@ const Schema& linear_schema() {
 
 const Schema& output_schema() {
   static const Schema s{"output", {
-      {"every", KeyType::Integer, "steps", "1", "write the fields to NAME.h5 every N steps. The initial state (t = 0) and the last step are always written. Sensors (NAME.csv) are written every step regardless", Range::closed(1, 1000000)},
+      {"every", KeyType::Integer, "steps", "1", "write the fields to NAME.h5 every N steps. The initial state (t = 0) and the last step are always written. Sensors (NAME.csv): every step, or see `sensors_dt`", Range::closed(1, 1000000)},
       {"dt", KeyType::Number, "s", "none", "write the fields at t = k·dt (and at t_end). Fixed steps: dt must be a multiple of `solver.h` (it sets `every`); adaptive steps (`solver.tolerance`) are shortened to land on these times. Not together with `every`", Range::positive(), "output interval (s)"},
       {"hdf5", KeyType::Flag, "–", "on", "write NAME.h5 and NAME.xdmf; with `off` only NAME.csv"},
+      {"sensors", KeyType::Flag, "–", "on",
+       "write NAME.csv; with `off` no sensor rows are written (nor evaluated, except at the end for the summary) — for benchmarks and sweeps that need only the summary or the fields"},
+      {"sensors_dt", KeyType::Number, "s", "none (every step)",
+       "a row of NAME.csv at the first step at or after each multiple of this time (exactly at it when it is a multiple of `solver.h`, or of an `output.dt` that adaptive steps land on), the initial state and the last step; every step when absent",
+       Range::positive(), "sensor output interval (s)"},
       {"commit_interval", KeyType::Number, "s (wall time)", "1",
        "how long a part file of the results stays open before it is committed (renamed into place and listed in NAME.h5 and NAME.xdmf; docs/running.md): a run killed at any moment opens in ParaView up to its last commit. 0: every output step. The interval grows to 10 × the last commit's cost, so commits stay under ~10 % of a run; the first output step, checkpoints, the end, a failure and a stop signal always commit",
        Range::non_negative(), "wall-time interval (s; 0: every output step is committed at once)"},
       {"checkpoint_every", KeyType::Interval, "steps, or s/min/h", "none",
-       "write NAME.checkpoint.h5 every so many steps (an integer ≥ 1) or so much wall time (`\"600 s\"`, `\"10 min\"`, `\"2 h\"`; dynamic runs); a checkpoint is also written at the end of every run, after a Newton failure (the last converged state) and on a stop signal. `alphaflex run SCENE --restart OUTDIR/NAME.checkpoint.h5 -o OUTDIR` goes on from it (docs/running.md)",
+       "write NAME.checkpoint.h5 every so many steps (an integer ≥ 1) or so much wall time (`\"600 s\"`, `\"10 min\"`, `\"2 h\"`; dynamic runs); a checkpoint is also written at the end of every run (unless `checkpoint_at_end: off`), after a Newton failure (the last converged state) and on a stop signal. `alphaflex run SCENE --restart OUTDIR/NAME.checkpoint.h5 -o OUTDIR` goes on from it (docs/running.md)",
        Range::closed(1, 1000000000), "", "integer ≥ 1, or a wall time with its unit"},
       {"checkpoint_keep", KeyType::Integer, "–", "1", "how many checkpoints to keep (NAME.checkpoint.h5, NAME.checkpoint.1.h5, …)", Range::closed(1, 1000)},
+      {"checkpoint_at_end", KeyType::Flag, "–", "on",
+       "write NAME.checkpoint.h5 when a dynamic run ends (to go on with `--restart` and a larger `solver.t_end`); `off` saves its cost in benchmarks and sweeps. Checkpoints after a Newton failure, on a stop signal and by `checkpoint_every` are written either way"},
       {"progress", KeyType::Number, "s (wall time)", "30",
        "rank 0, on stderr: when stderr is not a terminal (batch logs), a line `progress: t = … s (… %), step … of …, Newton … per step, wall … s, ETA … s` every this many seconds (0: none), `load factor = …` and load steps in a static analysis; on a terminal the same line is rewritten in place 4 times a second and cleared before the summary",
        Range::non_negative(), "wall-time interval (s; 0: no progress lines in batch logs)"},
@@ -240,6 +247,12 @@ void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
     rs.checkpoint_wall = every.seconds;
   }
   rs.checkpoint_keep = o.integer("checkpoint_keep", rs.checkpoint_keep);
+  rs.checkpoint_at_end = o.flag("checkpoint_at_end", rs.checkpoint_at_end);
+  rs.sensors = o.flag("sensors", rs.sensors);
+  if (o.has("sensors_dt")) {
+    if (!rs.sensors) rd.fail(o.node("sensors_dt"), "output.sensors_dt", "output.sensors is off: give one of the two");
+    rs.sensors_dt = o.number("sensors_dt");
+  }
   rs.progress_interval = o.number("progress", rs.progress_interval);
   rs.output_every = o.integer("every", rs.output_every);
   if (o.has("dt")) {

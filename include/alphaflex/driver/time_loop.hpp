@@ -65,6 +65,7 @@ struct TimeLoopSettings {
   int output_every = 1;          ///< fields every N steps (and at the last step, and at output times)
   long checkpoint_steps = 0;     ///< every N steps (0: not by count)
   double checkpoint_wall = 0.0;  ///< every so many s of wall time (0: not by time)
+  bool checkpoint_at_end = true; ///< a checkpoint when the last step is taken (output.checkpoint_at_end)
   /// For the messages of a stop: `alphaflex run FILE --restart CHECKPOINT -o OUTDIR`.
   std::string scene_file, outdir;
   /// The stop signal received on this rank (0: none) and its name (app/stop_signals.hpp).
@@ -91,7 +92,7 @@ class TimeLoop {
   void observe(long step, const MechanicalState& s, bool fields);
 
   /// Steps `s` from its time to t_end, from step `first_step` on (1, or a checkpoint's step + 1);
-  /// `last_written` is the step of the last output step. Ends with a checkpoint. Throws SolverError
+  /// `last_written` is the step of the last output step. Ends with a checkpoint (unless `checkpoint_at_end` is off). Throws SolverError
   /// (a failed step the policy cannot retry; the last converged state is written and checkpointed)
   /// or Interrupted (stop signal; the state is checkpointed and written).
   void run(MechanicalState& s, long first_step, long last_written, LoopCounters& counters);

@@ -64,8 +64,9 @@ class ResultsWriter {
   /// rebuilt from the parts that remain (files that are missing are started anew, with a warning
   /// in `warnings()`). Collective; throws OutputError on every rank if a file cannot be written,
   /// InputError if the results of the checkpoint cannot be continued.
+  /// `csv` false (output.sensors: off): no NAME.csv (csv_path() is empty).
   ResultsWriter(const Subdomain& subdomain, const std::string& outdir, const std::string& name, bool hdf5,
-                double commit_interval = 1.0, const ResultsPosition* resume = nullptr);
+                double commit_interval = 1.0, const ResultsPosition* resume = nullptr, bool csv = true);
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;

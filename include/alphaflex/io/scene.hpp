@@ -40,6 +40,10 @@ struct RunSettings {
   /// adaptive steps land on them.
   std::vector<double> breakpoints;
   int output_every = 1; ///< HDF5 output every N steps (sensors: every step)
+  /// output.sensors: write NAME.csv; output.sensors_dt: a row at the first step at or after each
+  /// multiple of this time (s; 0: every step).
+  bool sensors = true;
+  double sensors_dt = 0.0;
   double progress_interval = 30.0;  ///< s of wall time between progress lines in batch logs (0: none)
   bool hdf5 = true;
   /// s of wall time a results part stays open before it is committed (io/results_writer.hpp);
@@ -50,6 +54,7 @@ struct RunSettings {
   long checkpoint_steps = 0;
   double checkpoint_wall = 0.0;
   int checkpoint_keep = 1;
+  bool checkpoint_at_end = true;  ///< output.checkpoint_at_end: a checkpoint when the run ends
 };
 
 struct Scene {
