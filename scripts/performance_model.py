@@ -116,7 +116,7 @@ def max_front(exe, n, work):
     cmd = [exe, "run", "inputs/gridshell.yaml", "-o", os.path.join(work, f"front{n}"), "--set", f"mesh.parameters.n={n}",
            "--set", "solver.t_end=0.01", "--set", "output.hdf5=off", "-mat_mumps_icntl_4", "2"]
     p = subprocess.run(cmd, cwd=ROOT, env=bm.ENV, capture_output=True, text=True)
-    m = re.findall(r"(?:Maximum frontal size|order of largest frontal matrix)[^=]*=\s*(\d+)", p.stdout + p.stderr, re.I)
+    m = re.findall(r"Maximum front(?:al)? size[^=]*=\s*(\d+)", p.stdout + p.stderr, re.I)
     return max(int(x) for x in m) if m else None
 
 
