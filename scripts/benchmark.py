@@ -2,7 +2,8 @@
 """Performance benchmarks of alphaflex, written to docs/performance.md with charts in docs/figures/
 and every measured row appended to docs/benchmarks/performance.csv (the regression record).
 
-    /usr/bin/python3 scripts/benchmark.py [--exe build/alphaflex] [--no-build] [--cases andrews,small,beam,gridshell,large]
+    /usr/bin/python3 scripts/benchmark.py [--exe build/alphaflex] [--no-build]
+                                          [--cases andrews,small,beam,gridshell,large,policy,model]
                                           [--sizes 8,16,32,48,64] [--ranks 1,2] [--baseline OTHER_EXE] [--quick]
 
 Cases (each a section of the page; the targets are those of the issue "speed on one rank"):
@@ -18,6 +19,10 @@ Cases (each a section of the page; the targets are those of the issue "speed on 
              2 ranks: time per step and its split, Newton iteration against one factorization +
              solve, memory per unknown, strong scaling; modified Newton on one rank.
   large      gridshell at n = 144 (~1e6 unknowns), 2 ranks, one step: does it fit in memory.
+  policy     modified against full Newton on every scene of inputs/ (scripts/modified_newton_policy.py,
+             ~5 min on a quiet machine)
+  model      the performance model past this machine, calibrated on gridshell n = 12-24 on 1-3 ranks
+             (scripts/performance_model.py, ~3 min on a quiet machine)
 
 It first builds build/alphaflex in Release (unless --no-build or another --exe). Every per-step
 figure is the difference of two runs of 2 and 2 + S steps, so start-up (mesh,
@@ -526,7 +531,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "alphaflex"))
     ap.add_argument("--baseline", help="another alphaflex executable to run side by side (gridshell and beam cases)")
-    ap.add_argument("--cases", default="andrews,small,beam,gridshell,large")
+    ap.add_argument("--cases", default="andrews,small,beam,gridshell,large,policy,model")
     ap.add_argument("--sizes", default="8,16,32,48,64")
     ap.add_argument("--modified-sizes", default="32,64", help="gridshell sizes also run with modified Newton (1 rank)")
     ap.add_argument("--beam-elements", default="170,500,1000,1700")
@@ -591,6 +596,12 @@ def main():
         targets += ts
         record_rows.append({"case": "large", "exe": "this", "n": r["n"], "ranks": r["ranks"], "unknowns": r["unknowns"],
                             "rss_mb": r["rss_mb"], "mumps_mb": r["mumps_mb"], "step_s": r["wall"]})
+    # The sections of the hand-written notes that scripts of their own measure (issue 22): they
+    # write between their markers in docs/performance_notes.md, which is copied below.
+    for case, script in (("policy", "modified_newton_policy.py"), ("model", "performance_model.py")):
+        if case in cases:
+            subprocess.run([sys.executable, os.path.join(ROOT, "scripts", script), "--exe", exes[0][1]], cwd=ROOT, env=ENV,
+                           check=True)
     if "small" in cases:
         rows = case_small(exes[0][1], work)
         sections.append(section_small(rows))

@@ -130,7 +130,7 @@ const Schema& output_schema() {
       {"sensors", KeyType::Flag, "–", "on",
        "write NAME.csv; with `off` no sensor rows are written (nor evaluated, except at the end for the summary) — for benchmarks and sweeps that need only the summary or the fields"},
       {"sensors_dt", KeyType::Number, "s", "none (every step)",
-       "a row of NAME.csv at the first step at or after each multiple of this time (exactly at it when it is a multiple of `solver.h`, or of an `output.dt` that adaptive steps land on), the initial state and the last step; every step when absent",
+       "a row of NAME.csv at the first step at or after each multiple of this time (exactly at it when it is a multiple of `solver.h`, or of an `output.dt` that adaptive steps land on), the initial state and the last step; every step when absent (dynamic runs: a static analysis writes every load step)",
        Range::positive(), "sensor output interval (s)"},
       {"commit_interval", KeyType::Number, "s (wall time)", "1",
        "how long a part file of the results stays open before it is committed (renamed into place and listed in NAME.h5 and NAME.xdmf; docs/running.md): a run killed at any moment opens in ParaView up to its last commit. 0: every output step. The interval grows to 10 × the last commit's cost, so commits stay under ~10 % of a run; the first output step, checkpoints, the end, a failure and a stop signal always commit",
