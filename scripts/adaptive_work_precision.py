@@ -58,7 +58,8 @@ def main():
     res = []
     for kind, values in (("tol", a.tol), ("h", a.h)):
         for v in values:
-            sets = list(a.set) + ([f"solver.tolerance.rtol={v}", f"solver.tolerance.atol={v}"] if kind == "tol" else [f"solver.h={v}"])
+            tol_sets = [f"solver.tolerance.rtol={v}", f"solver.tolerance.atol={v}"]
+            sets = list(a.set) + (tol_sets if kind == "tol" else [f"solver.h={v}"])
             r = run(a.exe, a.scene, sets, os.path.join(out, f"{kind}_{v}"), a.repeat)
             x = r["last"][r["header"].index(a.sensor)]
             r["error"] = abs(x - ref) / (1.0 if a.absolute else abs(ref))
@@ -77,11 +78,15 @@ def main():
         slope = sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sum((x - mx) ** 2 for x in lx)
         ratios = [r["error"] / r["value"] for r in ad]
         print(f"\nslope of log error vs log tol: {slope:.3f}; error/tol from {min(ratios):.3g} to {max(ratios):.3g}")
+    at = {}
     for name, rs in (("adaptive", ad), ("fixed", fx)):
         if len(rs) >= 2:
             e = [r["error"] for r in rs]
-            print(f"{name}: at {a.sensor} error {a.target:g}: steps {interp(e, [r['steps'] for r in rs], a.target):.0f}, "
-                  f"wall {1e3 * interp(e, [r['wall'] for r in rs], a.target):.1f} ms")
+            at[name] = (interp(e, [r['steps'] for r in rs], a.target), interp(e, [r['wall'] for r in rs], a.target))
+            print(f"{name}: at {a.sensor} error {a.target:g}: steps {at[name][0]:.0f}, wall {1e3 * at[name][1]:.1f} ms")
+    if len(at) == 2:
+        print(f"fixed / adaptive at error {a.target:g}: steps {at['fixed'][0] / at['adaptive'][0]:.2f}, "
+              f"wall {at['fixed'][1] / at['adaptive'][1]:.2f}")
 
 if __name__ == "__main__":
     main()

@@ -290,6 +290,8 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   Checkpointer checkpointer(sub, writer.get(), checkpoint_path, rs.parameters, h, rs.checkpoint_keep);
   TimeLoopSettings ls;
   ls.output_every = rs.output_every;
+  ErrorFilter filter(system, solver, rs.parameters, rs.integrator);
+  ls.filter = &filter;
   ls.checkpoint_steps = rs.checkpoint_steps;
   ls.checkpoint_wall = rs.checkpoint_wall;
   ls.checkpoint_at_end = rs.checkpoint_at_end;

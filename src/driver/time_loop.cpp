@@ -213,7 +213,22 @@ void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopC
       counters.newton_max = std::max(counters.newton_max, rep.iterations);
     }
     const bool estimating = ok && controller_.estimates_error();
-    const double local_error = estimating ? estimator_.estimate(sub_, rep.increment, p.h, rep.local_error) : 0.0;
+    double local_error = 0.0;
+    if (estimating && settings_.filter) {
+      // The first step has no history: its estimate is C h² (a_{n+1} − a_n), with a_n the saved a as
+      // the step moved it to its h (GeneralizedAlpha::step; none at the start of a run, h_aux = 0).
+      Eigen::VectorXd from_a;
+      if (estimator_.history().count < 2) {
+        Eigen::VectorXd a_n = saved_a;
+        if (saved_h_aux > 0.0 && p.h != saved_h_aux) a_n = saved.qdd + (p.h / saved_h_aux) * (saved_a - saved.qdd);
+        from_a = std::fabs(integrator_.parameters().local_error_constant()) * p.h * p.h * (integrator_.auxiliary() - a_n);
+      }
+      const Eigen::VectorXd e = estimator_.error_vector(rep.increment, p.h, from_a);
+      local_error = sub_.max_abs(settings_.filter->apply(s, e, p.h, rep.increment, ErrorFilter::applications(controller_.t_end(), p.h),
+                                                         integrator_.times()));
+    } else if (estimating) {
+      local_error = estimator_.estimate(sub_, rep.increment, p.h, rep.local_error);
+    }
     if (ok && !controller_.converged(p, controller_.scaled_error(local_error, rep.q_norm, p.h))) {
       const std::string small = controller_.too_small(p);
       if (!small.empty()) {

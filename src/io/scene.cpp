@@ -66,7 +66,7 @@ const Schema& solver_schema() {
       {"gamma", KeyType::Number, "–", "from ρ∞; 0.5 for `newmark`", "explicit γ (as `beta`); γ ≥ 0"},
       {"h", KeyType::Number, "s", "1e-3", "time step; at most `t_end`, and t_end/h ≤ 1e10. With `tolerance`: the first step", Range::positive(), "step size (s)"},
       {"tolerance", KeyType::Map, "–", "none (fixed steps)",
-       "adaptive steps (`solver.tolerance`: `rtol`, `atol`): h is chosen by the local error estimate of q and a PI controller, steps above the tolerance are rejected and retried, Newton failures halve h (docs/theory/adaptive_steps.md). Not together with `step_cuts`"},
+       "adaptive steps (`solver.tolerance`: `rtol`, `atol`): h is chosen by the local error estimate of q (without the content the scheme damps: filtered by the iteration matrix) and a PI controller, steps above the tolerance are rejected and retried, Newton failures halve h (docs/theory/adaptive_steps.md). Not together with `step_cuts`"},
       {"h_min", KeyType::Number, "s", "1e-10 `t_end`", "with `tolerance`: the smallest step; a step that would need less stops the run (exit 3)", Range::positive(), "step size (s)"},
       {"h_max", KeyType::Number, "s", "`t_end`", "with `tolerance`: the largest step", Range::positive(), "step size (s)"},
       {"t_end", KeyType::Number, "s", "1", "final time (the run starts at t = 0)", Range::positive(), "final time (s)"},

@@ -115,9 +115,11 @@ TEST(AdaptiveSteps, StepsLandOnTheOutputTimes) {
 
 // A 4 ms pulse at t = 0.1 s on a beam at rest (inputs/beam_impulse.yaml): before it nothing moves,
 // the error estimate is zero and h grows; the steps land on the load's breakpoints (0.1, 0.102,
-// 0.104 s) instead of stepping over the pulse, and the beam is set in motion.
+// 0.104 s) instead of stepping over the pulse, and the beam is set in motion. (tol = 1e-3: at 1e-2 the
+// filtered estimate, which leaves out the bending modes the scheme damps, takes 32 steps for the 0.2 s
+// and tip_y is 10 % off the fixed steps', beyond the 5 % of the comparison below.)
 TEST(AdaptiveSteps, StepsLandOnTheLoadsBreakpoints) {
-  std::vector<std::string> o = tolerance(1e-2);
+  std::vector<std::string> o = tolerance(1e-3);
   o.push_back("solver.t_end=0.2");
   const RunSummary r = run_scene("beam_impulse", o);
   for (double tb : {0.1, 0.102, 0.104}) {

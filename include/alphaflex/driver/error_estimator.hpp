@@ -33,6 +33,10 @@ class PositionErrorEstimator {
   /// ‖C h³ q⃛‖∞ over all ranks for a step of size h with increment x; `fallback` (the estimate
   /// from a) while fewer than two accepted steps precede. Collective.
   double estimate(const Subdomain& sub, const Eigen::VectorXd& increment, double h, double fallback) const;
+  /// The same estimate as a vector, C h³ q⃛ (local coordinates), for the filtered estimate
+  /// (driver/error_filter.hpp); `fallback` (C h² (a_{n+1} − a_n)) while fewer than two accepted steps
+  /// precede.
+  Eigen::VectorXd error_vector(const Eigen::VectorXd& increment, double h, const Eigen::VectorXd& fallback) const;
   /// The run starts at the state with velocity v0 (local): the first point of the history.
   void start(const Eigen::VectorXd& v0) {
     hist_ = History();
@@ -46,6 +50,9 @@ class PositionErrorEstimator {
   void set_history(const History& h) { hist_ = h; }
 
  private:
+  /// m[τ_n, τ_{n+1}] − m[τ_{n−1}, τ_n] (local), and `factor` that makes C h³ q⃛ of it.
+  Eigen::VectorXd divided_difference(const Eigen::VectorXd& increment, double h, double& factor) const;
+
   double c_;
   History hist_;
 };

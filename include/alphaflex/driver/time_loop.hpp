@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "alphaflex/driver/error_estimator.hpp"
+#include "alphaflex/driver/error_filter.hpp"
 #include "alphaflex/driver/step_controller.hpp"
 #include "alphaflex/integrators/generalized_alpha.hpp"
 #include "alphaflex/io/checkpoint.hpp"
@@ -63,6 +64,9 @@ class Checkpointer {
 
 struct TimeLoopSettings {
   int output_every = 1;          ///< fields every N steps (and at the last step, and at output times)
+  /// Adaptive steps: the filter of the local error estimate (driver/error_filter.hpp); null: the
+  /// estimate from positions as it is.
+  ErrorFilter* filter = nullptr;
   long checkpoint_steps = 0;     ///< every N steps (0: not by count)
   double checkpoint_wall = 0.0;  ///< every so many s of wall time (0: not by time)
   bool checkpoint_at_end = true; ///< a checkpoint when the last step is taken (output.checkpoint_at_end)
