@@ -50,6 +50,32 @@ Eigen::Vector2d node_coordinates(int n, int I) {
   return n == 4 ? Eigen::Vector2d(q[I][0], q[I][1]) : Eigen::Vector2d(t[I][0], t[I][1]);
 }
 
+/// Edges (I → J) whose geodesic director differences E_e the bending strains use in the geodesic
+/// interpolation: the quadrilateral's two edges along ξ (1→2, 4→3) and along η (1→4, 2→3), the
+/// triangle's three edges.
+constexpr int kQuadEdges[4][2] = {{0, 1}, {3, 2}, {0, 3}, {1, 2}};
+constexpr int kTriEdges[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+int edge_node(int n, int e, int end) { return n == 4 ? kQuadEdges[e][end] : kTriEdges[e][end]; }
+
+/// c(α, e): the director gradient d,α = Σ_e c(α, e) E_e at (ξ, η). With E_e = d_J − d_I this is the
+/// linear interpolation's gradient exactly: the bilinear quadrilateral's d,ξ = ¼(1 − η)(d_2 − d_1) +
+/// ¼(1 + η)(d_3 − d_4) (and d,η alike); the triangle's (d,r, d,s) is the least-squares fit to its
+/// three edges, ⅓(2E_12 + E_13 − E_23, E_12 + 2E_13 + E_23), symmetric in the node order and equal to
+/// (d_2 − d_1, d_3 − d_1) whenever E_23 = E_13 − E_12.
+Eigen::MatrixXd edge_gradient(int n, double xi, double eta) {
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(2, n);
+  if (n == 4) {
+    c(0, 0) = 0.25 * (1 - eta);
+    c(0, 1) = 0.25 * (1 + eta);
+    c(1, 2) = 0.25 * (1 - xi);
+    c(1, 3) = 0.25 * (1 + xi);
+  } else {
+    c << 2.0 / 3, 1.0 / 3, -1.0 / 3,  //
+        1.0 / 3, 2.0 / 3, 1.0 / 3;
+  }
+  return c;
+}
+
 /// Quadrature: 2×2 Gauss on the square (exact for the bilinear products of the energy, the mass
 /// and the EAS modes), the 3-point (edge-interior) rule on the triangle (exact for quadratics).
 struct Quadrature {
@@ -80,10 +106,12 @@ const Quadrature& quadrature(int n) {
   return n == 4 ? quad : tri;
 }
 
-/// The covariant strains as bilinear forms in U = (x_1 … x_n, d_1 … d_n): s = ½ Σ_ab Q_ab U_a·U_b.
+/// The covariant strains as bilinear forms in U = (x_1 … x_n, d_1 … d_n, E_1 … E_n): s = ½ Σ_ab
+/// Q_ab U_a·U_b, E_e the geodesic edge differences of the directors (n edges: 4 or 3). Built at this
+/// full size; the linear interpolation never uses the E rows and drops them (ReissnerMindlinShell).
 using Form = Eigen::MatrixXd;
 
-Form zero_form(int n) { return Form::Zero(2 * n, 2 * n); }
+Form zero_form(int n) { return Form::Zero(3 * n, 3 * n); }
 
 /// ε_αβ (2 × Voigt shear for α ≠ β): ½ (a_α·a_β) (× 2 for the shear entry).
 Form membrane_form(const Shape& s, int n, int a, int b) {
@@ -96,17 +124,20 @@ Form membrane_form(const Shape& s, int n, int a, int b) {
   return Q;
 }
 
-/// κ_αβ = ½ (a_α·d,β + a_β·d,α) (Voigt: 2κ12 = a1·d,2 + a2·d,1).
-Form bending_form(const Shape& s, int n, int a, int b) {
+/// κ_αβ = ½ (a_α·d,β + a_β·d,α) (Voigt: 2κ12 = a1·d,2 + a2·d,1), with d,α = Σ_J N_J,α d_J (linear)
+/// or d,α = Σ_e c(α, e) E_e (geodesic: `edges` = edge_gradient at the point).
+Form bending_form(const Shape& s, int n, int a, int b, const Eigen::MatrixXd* edges) {
   const Eigen::VectorXd& Da = a == 0 ? s.dN1 : s.dN2;
   const Eigen::VectorXd& Db = b == 0 ? s.dN1 : s.dN2;
   Form Q = zero_form(n);
   const double f = a == b ? 0.5 : 1.0;
   for (int I = 0; I < n; ++I)
     for (int J = 0; J < n; ++J) {
-      const double c = f * (Da[I] * Db[J] + Db[I] * Da[J]);  // coefficient of x_I·d_J
-      Q(I, n + J) += c;
-      Q(n + J, I) += c;
+      // coefficient of x_I·d_J, or of x_I·E_J
+      const double c = edges ? f * (Da[I] * (*edges)(b, J) + Db[I] * (*edges)(a, J)) : f * (Da[I] * Db[J] + Db[I] * Da[J]);
+      const int col = (edges ? 2 * n : n) + J;
+      Q(I, col) += c;
+      Q(col, I) += c;
     }
   return Q;
 }
@@ -143,7 +174,7 @@ std::array<Form, 2> assumed_shear(int n, double xi, double eta) {
 /// The 8 forms at one point: ε11, ε22, 2ε12, κ11, κ22, 2κ12, γ1, γ2 (natural, covariant). `X`: the
 /// element's reference node positions (the quadrilateral's assumed membrane strains depend on its
 /// geometry, below).
-std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X);
+std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X, bool geodesic);
 
 /// The quadrilateral's assumed membrane strains, against membrane locking in curved shells:
 /// ε11 tied at the edge midpoints (0, ±1), ε22 at (±1, 0), ε12 at the centre (as the MITC4 shear,
@@ -189,27 +220,39 @@ std::array<Form, 3> assumed_membrane(double xi, double eta, const Eigen::MatrixX
   return {ans[0] + f[0] - ans_f[0], ans[1] + f[1] - ans_f[1], ans[2] + f[2] - ans_f[2]};
 }
 
-std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X) {
+std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X, bool geodesic) {
   const Shape s = shape(n, xi, eta);
+  const Eigen::MatrixXd c = edge_gradient(n, xi, eta);
+  const Eigen::MatrixXd* edges = geodesic ? &c : nullptr;
   const auto g = assumed_shear(n, xi, eta);
   const std::array<Form, 3> m = n == 4 ? assumed_membrane(xi, eta, X)
                                        : std::array<Form, 3>{membrane_form(s, n, 0, 0), membrane_form(s, n, 1, 1),
                                                              membrane_form(s, n, 0, 1)};
-  return {m[0], m[1], m[2], bending_form(s, n, 0, 0), bending_form(s, n, 1, 1), bending_form(s, n, 0, 1), g[0], g[1]};
+  return {m[0], m[1], m[2], bending_form(s, n, 0, 0, edges), bending_form(s, n, 1, 1, edges), bending_form(s, n, 0, 1, edges),
+          g[0], g[1]};
 }
 
 /// All forms of an element, quadrature point by quadrature point: the triangle's are the same for
 /// every element (shared), the quadrilateral's membrane forms depend on its reference geometry.
-std::shared_ptr<const std::vector<Form>> element_forms(int n, const Eigen::MatrixXd& X) {
-  auto build = [](int nn, const Eigen::MatrixXd& XX) {
+std::shared_ptr<const std::vector<Form>> element_forms(int n, const Eigen::MatrixXd& X, bool geodesic) {
+  auto build = [](int nn, const Eigen::MatrixXd& XX, bool geo) {
     auto f = std::make_shared<std::vector<Form>>();
     for (const auto& p : quadrature(nn).points)
-      for (const Form& q : forms_at(nn, p[0], p[1], XX)) f->push_back(q);
+      for (const Form& q : forms_at(nn, p[0], p[1], XX, geo)) f->push_back(q);
     return f;
   };
-  if (n == 4) return build(4, X);
-  static const std::shared_ptr<const std::vector<Form>> tri = build(3, Eigen::MatrixXd::Zero(3, 3));
-  return tri;
+  if (n == 4) return build(4, X, geodesic);
+  static const std::shared_ptr<const std::vector<Form>> tri[2] = {build(3, Eigen::MatrixXd::Zero(3, 3), false),
+                                                                  build(3, Eigen::MatrixXd::Zero(3, 3), true)};
+  return tri[geodesic ? 1 : 0];
+}
+
+/// The rows E_e = h(|Δ_e|²) Δ_e, Δ_e = d_J − d_I, of U (rows 2n … 2n + m − 1) from its director rows.
+void geodesic_edge_rows(int n, int m, Eigen::MatrixXd& U) {
+  for (int e = 0; e < m; ++e) {
+    const Eigen::RowVector3d D = U.row(n + edge_node(n, e, 1)) - U.row(n + edge_node(n, e, 0));
+    U.row(2 * n + e) = arc_over_chord(D.squaredNorm()).h * D;
+  }
 }
 
 /// Values s_k = ½ Σ Q_ab U_a·U_b of all forms.
@@ -287,6 +330,36 @@ ShellSection ShellSection::laminate(const Eigen::Matrix3d& A, const Eigen::Matri
   // A mean in-plane shear modulus for the drilling penalty: A66 / t.
   s.shear_modulus = A(2, 2) / thickness;
   return s;
+}
+
+// ------------------------------------------------------------------ geodesic edges
+
+ArcOverChord arc_over_chord(double q) {
+  // h(q) = g(q/4), g(v) = asin(√v)/√v: its Taylor series Σ c_k v^k, c_{k+1} = c_k (2k + 1)²/((2k + 2)(2k + 3)),
+  // for v < ¼ (a turn below 60°; 40 terms leave < 1e-24), the closed forms beyond (no cancellation there).
+  const double v = 0.25 * q;
+  double g = 0.0, g1 = 0.0, g2 = 0.0;
+  if (v < 0.25) {
+    static const std::array<double, 42> c = [] {
+      std::array<double, 42> t{};
+      t[0] = 1.0;
+      for (size_t k = 0; k + 1 < t.size(); ++k) t[k + 1] = t[k] * (2.0 * k + 1) * (2.0 * k + 1) / ((2.0 * k + 2) * (2.0 * k + 3));
+      return t;
+    }();
+    for (int k = 39; k >= 0; --k) {  // Horner: g = Σ c_k v^k, g' = Σ (k+1) c_{k+1} v^k, g'' = Σ (k+2)(k+1) c_{k+2} v^k
+      const auto K = static_cast<size_t>(k);
+      g = g * v + c[K];
+      g1 = g1 * v + (k + 1) * c[K + 1];
+      g2 = g2 * v + (k + 2) * (k + 1) * c[K + 2];
+    }
+  } else {
+    // x = √v = c/2 ≤ 1: g = asin x / x, g' = A/(2x³), g'' = 1/(4x²(1 − x²)^{3/2}) − 3A/(4x⁵), A = x/√(1 − x²) − asin x.
+    const double x = std::sqrt(v), s = std::sqrt(std::max(0.0, 1 - v)), A = x / s - std::asin(std::min(x, 1.0));
+    g = std::asin(std::min(x, 1.0)) / x;
+    g1 = A / (2 * x * x * x);
+    g2 = 1.0 / (4 * x * x * s * s * s) - 3 * A / (4 * x * x * x * x * x);
+  }
+  return {g, g1 / 4, g2 / 16};
 }
 
 // ------------------------------------------------------------------ element
@@ -389,7 +462,9 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
   // (tied) strain is the compatible one plus Δ(P) = T_P (ε̃(P) − ε(P)), less Δ's mean over the
   // element, so that ∫ δε̂ dA = ∫ δε dA: constant stresses see no difference (the second half of the
   // patch test; the first, exact homogeneous strains, is assumed_membrane's correction).
-  auto forms = element_forms(n_, X);
+  const bool geodesic = options.director_interpolation == DirectorInterpolation::geodesic;
+  m_ = geodesic ? n_ : 0;
+  auto forms = element_forms(n_, X, geodesic);
   if (n_ == 4) {
     auto own = std::make_shared<std::vector<Form>>(*forms);
     std::vector<std::array<Form, 3>> delta(static_cast<size_t>(ngp));
@@ -417,6 +492,11 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
     }
     forms = own;
   }
+  if (!geodesic) {  // the E rows are unused: drop them (the forms' cost grows with their size squared)
+    auto own = std::make_shared<std::vector<Form>>();
+    for (const Form& f : *forms) own->push_back(f.topLeftCorner(2 * n_, 2 * n_));
+    forms = own;
+  }
   forms_ = forms;
 
   // Energy: W = ½ Σ_P w_P (T_P s_P + E_P α)ᵀ S (T_P s_P + E_P α) = ½ sᵀK s + sᵀL α + ½ αᵀH α, quadratic
@@ -441,9 +521,10 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
   S_ = S;
 
   // Reference values of the forms.
-  Eigen::MatrixXd U0(2 * n_, 3);
+  Eigen::MatrixXd U0(2 * n_ + m_, 3);
   U0.topRows(n_) = X;
-  U0.bottomRows(n_) = D0;
+  U0.middleRows(n_, n_) = D0;
+  geodesic_edge_rows(n_, m_, U0);
   s0_ = form_values(*forms_, U0);
 
   // Drilling: ω_I = Σ_J x_J·R_I g_IJ (header), g_IJ = ½ (c_J1 P_I2 − c_J2 P_I1), c_Jβ = N_J,α(centre) (A^α·e_β),
@@ -468,13 +549,14 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
 
 void ReissnerMindlinShell::nodal_vectors(const Eigen::VectorXd& q, Eigen::MatrixXd& U,
                                          std::array<Eigen::Matrix3d, kMaxNodes>& R) const {
-  U.resize(2 * n_, 3);
+  U.resize(2 * n_ + m_, 3);
   for (int I = 0; I < n_; ++I) {
     const Pose<double> p = pose_of(q.data() + 7 * I);
     R[static_cast<size_t>(I)] = p.R;
     U.row(I) = p.x.transpose();
     U.row(n_ + I) = (p.R * dbar_[static_cast<size_t>(I)]).transpose();
   }
+  geodesic_edge_rows(n_, m_, U);
 }
 
 double ReissnerMindlinShell::elastic_energy(const Eigen::VectorXd& q) const {
@@ -500,20 +582,43 @@ void ReissnerMindlinShell::elastic_forces(const Eigen::VectorXd& q, Eigen::Vecto
   const Eigen::VectorXd sigma = C_ * (form_values(Q, U) - s0_);
 
   // r_U = (Σ σ_k Q_k) U.
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
+  const int rows = 2 * n_ + m_;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(rows, rows);
   for (int k = 0; k < nf; ++k) G += sigma[k] * Q[static_cast<size_t>(k)];
   const Eigen::MatrixXd rU = G * U;
-  // δd_I = Λ_I δθ_I, Λ_I = −R_I D̄_I^.
-  std::array<Eigen::Matrix3d, kMaxNodes> Lam;
+  // δd_I = Λ_I δθ_I, Λ_I = −R_I D̄_I^; δE_e = J_e (δd_J − δd_I), J_e = h I + 2h' Δ Δᵀ (geodesic edges,
+  // E_e = h(|Δ|²) Δ, Δ = d_J − d_I).
+  std::array<Eigen::Matrix3d, kMaxNodes> Lam, Je;
+  std::array<Eigen::Vector3d, kMaxNodes> Dl;
+  std::array<ArcOverChord, kMaxNodes> ac;
   for (int I = 0; I < n_; ++I) Lam[static_cast<size_t>(I)] = -R[static_cast<size_t>(I)] * hat3(dbar_[static_cast<size_t>(I)]);
+  Eigen::MatrixXd rd_edges;  // r_d with the edges' part chained in (geodesic only; else rows n … 2n − 1 of r_U)
+  if (m_ > 0) rd_edges = rU.middleRows(n_, n_);
+  for (int e = 0; e < m_; ++e) {
+    const auto E = static_cast<size_t>(e);
+    Dl[E] = (U.row(n_ + edge_node(n_, e, 1)) - U.row(n_ + edge_node(n_, e, 0))).transpose();
+    ac[E] = arc_over_chord(Dl[E].squaredNorm());
+    Je[E] = ac[E].h * Eigen::Matrix3d::Identity() + 2 * ac[E].dh * Dl[E] * Dl[E].transpose();
+    const Eigen::RowVector3d rD = rU.row(2 * n_ + e) * Je[E];
+    rd_edges.row(edge_node(n_, e, 1)) += rD;
+    rd_edges.row(edge_node(n_, e, 0)) -= rD;
+  }
+  const Eigen::MatrixXd& rdv = m_ > 0 ? rd_edges : rU;
+  const int rd0 = m_ > 0 ? 0 : n_;  // row of r_d,1 in rdv
   r = Eigen::VectorXd::Zero(nd);
   for (int I = 0; I < n_; ++I) {
     r.segment<3>(6 * I) = rU.row(I).transpose();
-    r.segment<3>(6 * I + 3) = Lam[static_cast<size_t>(I)].transpose() * rU.row(n_ + I).transpose();
+    r.segment<3>(6 * I + 3) = Lam[static_cast<size_t>(I)].transpose() * rdv.row(rd0 + I).transpose();
   }
   if (Kout) {
     Eigen::MatrixXd& K = *Kout;
-    // B P: row k = (Q_k U) mapped to (δx, δθ).
+    // B P: row k = (Q_k U) mapped to (δx, δθ); an edge row E_e maps through δE_e = J_e (Λ_J δθ_J − Λ_I δθ_I).
+    std::array<Eigen::Matrix3d, kMaxNodes> JL0, JL1;  // J_e Λ_I, J_e Λ_J of edge e = (I, J)
+    for (int e = 0; e < m_; ++e) {
+      const auto E = static_cast<size_t>(e);
+      JL0[E] = Je[E] * Lam[static_cast<size_t>(edge_node(n_, e, 0))];
+      JL1[E] = Je[E] * Lam[static_cast<size_t>(edge_node(n_, e, 1))];
+    }
     Eigen::MatrixXd BP(nf, nd);
     for (int k = 0; k < nf; ++k) {
       const Eigen::MatrixXd QU = Q[static_cast<size_t>(k)] * U;
@@ -521,8 +626,14 @@ void ReissnerMindlinShell::elastic_forces(const Eigen::VectorXd& q, Eigen::Vecto
         BP.block<1, 3>(k, 6 * I) = QU.row(I);
         BP.block<1, 3>(k, 6 * I + 3) = QU.row(n_ + I) * Lam[static_cast<size_t>(I)];
       }
+      for (int e = 0; e < m_; ++e) {
+        const auto E = static_cast<size_t>(e);
+        BP.block<1, 3>(k, 6 * edge_node(n_, e, 1) + 3) += QU.row(2 * n_ + e) * JL1[E];
+        BP.block<1, 3>(k, 6 * edge_node(n_, e, 0) + 3) -= QU.row(2 * n_ + e) * JL0[E];
+      }
     }
     K = BP.transpose() * C_ * BP;
+    // Pᵀ (G ⊗ I₃) P, block by block.
     for (int I = 0; I < n_; ++I)
       for (int J = 0; J < n_; ++J) {
         const auto& LI = Lam[static_cast<size_t>(I)];
@@ -532,11 +643,63 @@ void ReissnerMindlinShell::elastic_forces(const Eigen::VectorXd& q, Eigen::Vecto
         K.block<3, 3>(6 * I + 3, 6 * J) += G(n_ + I, J) * LI.transpose();
         K.block<3, 3>(6 * I + 3, 6 * J + 3) += G(n_ + I, n_ + J) * LI.transpose() * LJ;
       }
+    // The edge rows against every row a of U: P_a as (column, matrix) pairs.
+    for (int e = 0; e < m_; ++e) {
+      const auto E = static_cast<size_t>(e);
+      const int cI = 6 * edge_node(n_, e, 0) + 3, cJ = 6 * edge_node(n_, e, 1) + 3, a = 2 * n_ + e;
+      for (int b = 0; b < 2 * n_ + m_; ++b) {
+        const double g = G(a, b);
+        if (g == 0.0) continue;
+        if (b < n_) {  // a position row: P_b = I at δx_b (and the symmetric block)
+          K.block<3, 3>(cJ, 6 * b) += g * JL1[E].transpose();
+          K.block<3, 3>(cI, 6 * b) -= g * JL0[E].transpose();
+          K.block<3, 3>(6 * b, cJ) += g * JL1[E];
+          K.block<3, 3>(6 * b, cI) -= g * JL0[E];
+          continue;
+        }
+        // a director row (P_b = Λ_b at δθ_b, both orders) or an edge row (the edge × edge blocks once)
+        std::array<std::pair<int, Eigen::Matrix3d>, 2> pb;
+        int nb = 1;
+        if (b < 2 * n_) {
+          pb[0] = {6 * (b - n_) + 3, Lam[static_cast<size_t>(b - n_)]};
+        } else {
+          const auto F = static_cast<size_t>(b - 2 * n_);
+          pb[0] = {6 * edge_node(n_, b - 2 * n_, 1) + 3, JL1[F]};
+          pb[1] = {6 * edge_node(n_, b - 2 * n_, 0) + 3, -JL0[F]};
+          nb = 2;
+        }
+        for (int c = 0; c < nb; ++c) {
+          const auto& [col, M] = pb[static_cast<size_t>(c)];
+          K.block<3, 3>(cJ, col) += g * JL1[E].transpose() * M;
+          K.block<3, 3>(cI, col) -= g * JL0[E].transpose() * M;
+          if (b < 2 * n_) {
+            K.block<3, 3>(col, cJ) += g * M.transpose() * JL1[E];
+            K.block<3, 3>(col, cI) -= g * M.transpose() * JL0[E];
+          }
+        }
+      }
+    }
     // Second derivative of the director on the group: r_d·R ê_j ê_k D̄ = (w D̄ᵀ − (w·D̄) I)_kj, w = Rᵀ r_d.
     for (int I = 0; I < n_; ++I) {
-      const Eigen::Vector3d w = R[static_cast<size_t>(I)].transpose() * rU.row(n_ + I).transpose();
+      const Eigen::Vector3d w = R[static_cast<size_t>(I)].transpose() * rdv.row(rd0 + I).transpose();
       const Eigen::Vector3d& Db = dbar_[static_cast<size_t>(I)];
       K.block<3, 3>(6 * I + 3, 6 * I + 3) += w * Db.transpose() - w.dot(Db) * Eigen::Matrix3d::Identity();
+    }
+    // Second derivative of the geodesic edges: ∂²(w·E)/∂Δ² = 2h'(wΔᵀ + Δwᵀ + (w·Δ) I) + 4h''(w·Δ) ΔΔᵀ,
+    // w = r_E, carried to the rotations by δΔ = Λ_J δθ_J − Λ_I δθ_I.
+    for (int e = 0; e < m_; ++e) {
+      const auto E = static_cast<size_t>(e);
+      const int I = edge_node(n_, e, 0), J = edge_node(n_, e, 1);
+      const Eigen::Vector3d w = rU.row(2 * n_ + e).transpose(), D = Dl[E];
+      const double wD = w.dot(D);
+      const Eigen::Matrix3d H = 2 * ac[E].dh * (w * D.transpose() + D * w.transpose() + wD * Eigen::Matrix3d::Identity()) +
+                                4 * ac[E].d2h * wD * D * D.transpose();
+      const Eigen::Matrix3d& LI = Lam[static_cast<size_t>(I)];
+      const Eigen::Matrix3d& LJ = Lam[static_cast<size_t>(J)];
+      K.block<3, 3>(6 * J + 3, 6 * J + 3) += LJ.transpose() * H * LJ;
+      K.block<3, 3>(6 * I + 3, 6 * I + 3) += LI.transpose() * H * LI;
+      K.block<3, 3>(6 * I + 3, 6 * J + 3) -= LI.transpose() * H * LJ;
+      K.block<3, 3>(6 * J + 3, 6 * I + 3) -= LJ.transpose() * H * LI;
     }
   }
 

@@ -66,11 +66,32 @@ struct ShellSection {
                                const Eigen::Matrix2d& As, double thickness, double mass, double rotary);
 };
 
+/// How the bending strains see the turn of the director between nodes (docs/theory/shell.md).
+///  linear:   d,α of the linearly interpolated director d = Σ N_I d_I; a turn φ between two nodes
+///            is seen as the chord 2 sin(φ/2), the curvature of a rolled strip is underestimated
+///            by O(φ²).
+///  geodesic: each edge's chord d_J − d_I replaced by the geodesic (great-circle) difference, the
+///            chord's direction with the arc length φ: the derivative at the edge midpoint of the
+///            geodesic interpolation of the two directors on S² (Sander 2012, Sander, Neff &
+///            Bîrsan 2016; for a beam, the relative-rotation curvature of Crisfield & Jelenić
+///            1999), so that a constant curvature is exact (κ = φ/L_e). Objective, path
+///            independent, identical in the linear range.
+enum class DirectorInterpolation { linear, geodesic };
+
 struct ShellOptions {
   double drilling_factor = 1e-3;          ///< drilling stiffness / (G t), per area
   double drilling_inertia_factor = 1.0;   ///< drilling inertia / the node's rotary inertia
   bool eas = true;                        ///< EAS4 membrane modes (quadrilaterals)
+  DirectorInterpolation director_interpolation = DirectorInterpolation::linear;  ///< bending strains
 };
+
+/// The geodesic distance φ = 2 asin(c/2) between two unit vectors over their chord c = |d_J − d_I|,
+/// h(q) = φ/c as a function of q = c², and its derivatives dh/dq, d²h/dq² (smooth at q = 0:
+/// h = 1 + q/24 + 3q²/640 + …). The geodesic difference of the directors is h(|Δ|²) Δ, Δ = d_J − d_I.
+struct ArcOverChord {
+  double h = 1.0, dh = 0.0, d2h = 0.0;
+};
+ArcOverChord arc_over_chord(double q);
 
 /// A 4-node (MITC4 + EAS4) or 3-node (MITC3) shell element (header comment).
 class ReissnerMindlinShell final : public Element {
@@ -113,10 +134,12 @@ class ReissnerMindlinShell final : public Element {
   const ShellSection& section() const { return section_; }
 
  private:
-  /// U = (x_1 … x_n, d_1 … d_n) (rows) and the nodes' rotations at q.
+  /// U = (x_1 … x_n, d_1 … d_n, E_1 … E_m) (rows) and the nodes' rotations at q; the E_e are the
+  /// geodesic differences of the directors along the element's edges (geodesic interpolation only).
   void nodal_vectors(const Eigen::VectorXd& q, Eigen::MatrixXd& U, std::array<Eigen::Matrix3d, kMaxNodes>& R) const;
 
   int n_ = 0;                 // nodes
+  int m_ = 0;                 // edges whose geodesic director difference the bending strains use (0: linear)
   ShellSection section_;
   ShellOptions options_;
   std::array<Eigen::Vector3d, kMaxNodes> dbar_;   // D̄_I = R_I0ᵀ D_I

@@ -83,6 +83,8 @@ void read_shell_block(const Item& it) {
   const ShellSection section = read_shell_section(it);
   ShellOptions options;
   options.drilling_factor = k.number("drilling", options.drilling_factor);
+  options.director_interpolation = k.choice("director_interpolation", 0) == 0 ? DirectorInterpolation::linear
+                                                                            : DirectorInterpolation::geodesic;
   const double kink = k.number("kink_angle", 20.0);
   const bool axis_given = k.has("material_axis");
   const Eigen::Vector3d axis = k.direction("material_axis", Eigen::Vector3d::UnitX());
@@ -140,7 +142,8 @@ void register_shells_3d(SceneTypes& t) {
       {"section", KeyType::Map, "–", "–", "a laminate instead of `thickness` and `material` (`shells.section`)"},
       {"material_axis", KeyType::Vec3, "–", "[1, 0, 0]", "material axis 1, projected onto each element"},
       {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area (docs/theory/shell.md)", Range::positive(), "drilling stiffness factor (of G t)"},
-      {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there (folds, T-junctions)", Range::positive(), "angle (degrees)"}}},
+      {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there (folds, T-junctions)", Range::positive(), "angle (degrees)"},
+      {"director_interpolation", KeyType::Choice, "–", "linear", "how the bending strains see the director's turn between nodes: `geodesic` (arc length along each edge, exact for constant curvature) or `linear` (chord: curvature 2 sin(φ/2)/L_e for a turn φ per element; docs/theory/shell.md)", {}, "", "", {"linear", "geodesic"}}}},
       {"name, group, thickness, material", read_shell_block});
   t.parts.push_back(&material_schema());
   t.parts.push_back(&laminate_schema());
