@@ -291,7 +291,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   TimeLoopSettings ls;
   ls.output_every = rs.output_every;
   ErrorFilter filter(system, solver, rs.parameters, rs.integrator);
-  ls.filter = &filter;
+  if (rs.filtered_error_estimate) ls.filter = &filter;
   ls.checkpoint_steps = rs.checkpoint_steps;
   ls.checkpoint_wall = rs.checkpoint_wall;
   ls.checkpoint_at_end = rs.checkpoint_at_end;

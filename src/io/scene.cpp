@@ -87,6 +87,7 @@ const Schema& tolerance_schema() {
   static const Schema s{"solver.tolerance", {
       {"rtol", KeyType::Number, "–", "0", "relative tolerance of the local error of q per unit step (the run's length t_end as the unit): the errors the steps leave add up to about rtol‖q‖∞ + atol at t_end", Range::non_negative(), "tolerance"},
       {"atol", KeyType::Number, "m, rad", "0", "absolute tolerance of the same (at least one of rtol, atol > 0)", Range::non_negative(), "tolerance (m, rad)"},
+      {"estimate", KeyType::Choice, "–", "`filtered`", "the local error estimate: `filtered` (C·h³·q⃛ filtered by the iteration matrix k = ⌈ln(t_end/h)⌉ times, so the modes ρ∞ damps do not drive h; k + 1 extra residuals and back-substitutions per step) or `local` (C·h³·q⃛ unfiltered: cheaper per step, better where no stiff undamped content is excited, e.g. Andrews; docs/theory/adaptive_steps.md §3b)", {}, "", "", {"filtered", "local"}},
   }};
   return s;
 }
@@ -208,6 +209,7 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
     const Section t(rd, s.node("tolerance"), "solver.tolerance", tolerance_schema());
     rs.tolerance_rtol = t.number("rtol", 0.0);
     rs.tolerance_atol = t.number("atol", 0.0);
+    rs.filtered_error_estimate = t.choice("estimate", 0) == 0;
     if (!(rs.tolerance_rtol > 0.0 || rs.tolerance_atol > 0.0))
       rd.fail(s.node("tolerance"), "solver.tolerance", "expected rtol > 0 or atol > 0 (a tolerance of zero asks for h = 0)");
     if (rs.step_cuts > 0)
