@@ -1,4 +1,5 @@
 #include "alphaflex/core/expression.hpp"
+#include "alphaflex/core/expression_names.hpp"
 
 #include <algorithm>
 #include <array>
@@ -105,6 +106,18 @@ Jet hypot_of(const Jet& a, const Jet& b) {
   return (a.chain(0.0, a.v / h) + b.chain(0.0, b.v / h)) + Jet(h);
 }
 
+/// The end of the name starting at `pos`: letters, digits, _ and inner dots followed by a letter
+/// or _ (`arm.angle`; a dot then a digit is not part of a name).
+size_t name_end(const std::string& s, size_t pos) {
+  auto word = [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  while (pos < s.size()) {
+    if (word(s[pos])) ++pos;
+    else if (s[pos] == '.' && pos + 1 < s.size() && (std::isalpha(static_cast<unsigned char>(s[pos + 1])) || s[pos + 1] == '_')) ++pos;
+    else break;
+  }
+  return pos;
+}
+
 // Recursive-descent parser over the grammar
 //   expr := term (('+'|'-') term)* ; term := unary (('*'|'/') unary)* ;
 //   unary := '-' unary | '+' unary | power ; power := primary ('^' unary)? ;
@@ -117,6 +130,8 @@ class Parser {
   Parser(const std::string& s, const ExpressionScope& scope, const std::vector<std::string>* variables = nullptr,
          const double* values = nullptr)
       : s_(s), scope_(scope), variables_(variables), values_(values) {}
+  /// Collects the names used as values into `names` (each evaluates to 0) instead of looking them up.
+  void collect_names(std::vector<std::string>* names) { names_ = names; }
 
   T parse() {
     T v = expr();
@@ -199,8 +214,15 @@ class Parser {
     }
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
       size_t start = pos_;
-      while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
+      pos_ = name_end(s_, pos_);
       std::string name = s_.substr(start, pos_ - start);
+      if (names_) {
+        skip();
+        if (pos_ >= s_.size() || s_[pos_] != '(') {
+          if (std::find(names_->begin(), names_->end(), name) == names_->end()) names_->push_back(name);
+          return T(0.0);
+        }
+      }
       if (accept('(')) {
         std::vector<T> args{expr()};
         while (accept(',')) args.push_back(expr());
@@ -247,11 +269,20 @@ class Parser {
   const ExpressionScope& scope_;
   const std::vector<std::string>* variables_;
   const double* values_;
+  std::vector<std::string>* names_ = nullptr;
   size_t pos_ = 0;
   int depth_ = 0;
 };
 
 }  // namespace
+
+std::vector<std::string> expression_names(const std::string& text) {
+  std::vector<std::string> names;
+  Parser<double> p(text, ExpressionScope{});
+  p.collect_names(&names);
+  p.parse();
+  return names;
+}
 
 double evaluate_expression(const std::string& text, const ExpressionScope& scope) {
   return Parser<double>(text, scope).parse();

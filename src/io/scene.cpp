@@ -1,6 +1,7 @@
 #include "alphaflex/io/scene.hpp"
 
 #include "scene_reader.hpp"
+#include "types/sensor_feedback.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -388,6 +389,7 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   scene.model = std::make_unique<Model>();
   scene.model->name = scene.name;
   SceneBuilder sb(rd, *scene.model);
+  scene_detail::begin_sensor_feedback(sb);
   if (rs.dimension == 2) {
     const Eigen::Vector2d gravity = rd.vec2(root, "gravity", "", Eigen::Vector2d::Zero());
     sb.gravity = Eigen::Vector3d(gravity.x(), gravity.y(), 0.0);
@@ -403,6 +405,7 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   read_joints(rd, sb, root["joints"], types);
   read_forces(rd, sb, root["forces"], types, rs.dimension == 3);
   read_sensors(rd, sb, root["sensors"], types);
+  scene_detail::resolve_sensor_feedback(sb);  // loads and sensors that read sensors (types/sensor_feedback.hpp)
   rs.breakpoints = rd.breakpoints();
   std::sort(rs.breakpoints.begin(), rs.breakpoints.end());
   rs.breakpoints.erase(std::unique(rs.breakpoints.begin(), rs.breakpoints.end()), rs.breakpoints.end());

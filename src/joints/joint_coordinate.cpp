@@ -108,8 +108,23 @@ JointReaction JointCoordinateLink::reaction(const Eigen::VectorXd& q, double t, 
 double JointCoordinateLink::frame_value(const Eigen::VectorXd& q_frames) const {
   const auto p = frames_of(q_frames, frames());
   const Pose<double> A = a_.pose<double>(p.data()), B = b_.pose<double>(p.data());
-  if (coordinate_ == Coordinate::rotation) return std::atan2(A.R.col(0).dot(B.R.col(1)), A.R.col(0).dot(B.R.col(0)));
+  switch (coordinate_) {
+    case Coordinate::rotation: return std::atan2(A.R.col(0).dot(B.R.col(1)), A.R.col(0).dot(B.R.col(0)));
+    case Coordinate::universal_axis: return -std::atan2(A.R.col(2).dot(B.R.col(1)), A.R.col(1).dot(B.R.col(1)));
+    case Coordinate::universal_axis2: return -std::atan2(A.R.col(0).dot(B.R.col(2)), A.R.col(0).dot(B.R.col(0)));
+    case Coordinate::translation: break;
+  }
   return (A.x - B.x).dot(B.R.col(2));
+}
+
+std::string JointCoordinateLink::equation_name(int) const {
+  switch (coordinate_) {
+    case Coordinate::rotation: return "sin(angle − ψ)";
+    case Coordinate::universal_axis: return "sin(angle1 − ψ)";
+    case Coordinate::universal_axis2: return "sin(angle2 − ψ)";
+    case Coordinate::translation: break;
+  }
+  return "displacement − ψ";
 }
 
 }  // namespace alphaflex

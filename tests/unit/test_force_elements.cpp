@@ -570,7 +570,7 @@ TEST(JointSpringDamper, ASpringOnAJointWithoutSuchACoordinateIsRefusedByName) {
       {"forces:\n  - {name: m, type: joint_motor, joint: slide, torque: 3}\n",
        "forces[m].torque: this motor drives a translation: give `force`"},
       {"forces:\n  - {name: m, type: joint_motor, joint: cyl, coordinate: rotation, torque: \"k*speed\"}\n",
-       "forces[m].torque: in expression 'k*speed' at character 1: unknown name 'k' (the variables here are angle, speed, t"},
+       "forces[m].torque: unknown name 'k': no variable (angle, speed, t), parameter or sensor of that name"},
       {"sensors:\n  - {name: a, type: joint_angle, joint: slide}\n",
        "sensors[a].joint: 'slide' is a prismatic joint, which has a translation along its axis only"},
   };

@@ -17,7 +17,14 @@
 // Equations, with the joint's markers A (node 1) and B (node 2 or the ground), as the drivers of
 // joints/spatial_joints.hpp define the joint's angle and displacement:
 //   rotation:     a1·(cos ψ b2 − sin ψ b1) = sin(ϕ − ψ) = 0,  ϕ the angle of A relative to B about b3;
-//   translation:  (p_A − p_B)·b3 − ψ = 0.
+//   translation:  (p_A − p_B)·b3 − ψ = 0;
+// and the two angles of a universal joint (the cross turns about a1 in body 1 and about b2 in body
+// 2; the relative rotation is R_Bᵀ R_A = R_y(ψ2) R_x(ψ1) in the joint frame, both angles those of
+// body 1 relative to body 2 as for a revolute joint):
+//   about a1 (1): −b2·(cos ψ a3 + sin ψ a2) = sin(ϕ1 − ψ) = 0,  ϕ1 = −atan2(a3·b2, a2·b2);
+//   about b2 (2): −a1·(cos ψ b3 + sin ψ b1) = sin(ϕ2 − ψ) = 0,  ϕ2 = −atan2(a1·b3, a1·b1).
+// Neither degenerates: the joint keeps a1 ⊥ b2, so b2 stays in the plane of a2, a3 and a1 in that
+// of b1, b3 (unit projections), whatever the angles.
 // Φ_q, the geometric stiffness and the acceleration term are exact (forward AD on the group, as
 // model/spatial_kernel.hpp, with ψ as a 13th (or 7th) variable on a vector space).
 #include "alphaflex/model/constraint.hpp"
@@ -27,14 +34,14 @@ namespace alphaflex {
 
 class JointCoordinateLink final : public Constraint {
  public:
-  enum class Coordinate { rotation, translation };
+  enum class Coordinate { rotation, translation, universal_axis, universal_axis2 };
   /// `nodes`: the joint's one or two spatial nodes, then the coordinate's scalar node; the markers'
   /// slots refer to the spatial nodes.
   JointCoordinateLink(std::string name, std::vector<int> nodes, SpatialMarker a, SpatialMarker b, Coordinate c);
   const char* type() const override { return "joint_coordinate"; }
   std::unique_ptr<Constraint> clone() const override { return std::make_unique<JointCoordinateLink>(*this); }
   int size() const override { return 1; }
-  std::string equation_name(int) const override { return coordinate_ == Coordinate::rotation ? "sin(angle − ψ)" : "displacement − ψ"; }
+  std::string equation_name(int) const override;
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
                            Eigen::MatrixXd& k) const override;
@@ -51,8 +58,12 @@ class JointCoordinateLink final : public Constraint {
     using std::cos;
     using std::sin;
     const Pose<S> A = a_.pose(frames), B = b_.pose(frames);
-    if (coordinate_ == Coordinate::rotation)
-      return A.R.col(0).dot(Vec3<S>(cos(psi) * B.R.col(1) - sin(psi) * B.R.col(0)));
+    switch (coordinate_) {
+      case Coordinate::rotation: return A.R.col(0).dot(Vec3<S>(cos(psi) * B.R.col(1) - sin(psi) * B.R.col(0)));
+      case Coordinate::universal_axis: return -B.R.col(1).dot(Vec3<S>(cos(psi) * A.R.col(2) + sin(psi) * A.R.col(1)));
+      case Coordinate::universal_axis2: return -A.R.col(0).dot(Vec3<S>(cos(psi) * B.R.col(2) + sin(psi) * B.R.col(0)));
+      case Coordinate::translation: break;
+    }
     return (A.x - B.x).dot(B.R.col(2)) - psi;
   }
 

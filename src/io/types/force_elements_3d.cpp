@@ -11,6 +11,8 @@
 #include "alphaflex/joints/spatial_joints.hpp"
 #include "alphaflex/model/model.hpp"
 #include "common.hpp"
+#include "joint_coordinates.hpp"
+#include "sensor_feedback.hpp"
 
 namespace alphaflex::scene_detail {
 namespace {
@@ -188,29 +190,49 @@ void read_bushing(const Item& it) {
                                                  read_matrix6(it, "damping", "N·s/m, N·m·s/rad")));
 }
 
+}  // namespace
+
 // ---- Joint coordinates: springs, dampers, motors and sensors on a joint's angle or displacement ----
 
-using Coordinate = JointCoordinateLink::Coordinate;
+namespace {
 
-/// The coordinate of the joint named by `joint` that the item acts on or reads: the `coordinate`
-/// key (rotation, translation) or the joint's only one; `wanted` (if given) is what the type needs.
+/// "unknown coordinate …": what `coordinate` may be on this joint.
+[[noreturn]] void bad_coordinate(const Item& it, const std::string& w, const SpatialJointKind& kind) {
+  it.rd.fail(it.keys.node("coordinate"), it.at("coordinate"),
+             "unknown coordinate '" + w + "' (a " + kind.name + " joint has " +
+                 (kind.needs_axis2 ? std::string("1 (the angle about axis) and 2 (the angle about axis2)") : "rotation or translation") + ")");
+}
+
+}  // namespace
+
 Coordinate joint_coordinate_kind(const Item& it, const SpatialJoint& joint, const char* wanted) {
   const SpatialJointKind& kind = joint.kind();
+  // A universal joint (the one row with two axes: a1 = axis in body 1, b2 = axis2 in body 2) turns
+  // about both: coordinates 1 and 2 (joints/joint_coordinate.hpp).
+  if (kind.needs_axis2) {
+    if (wanted && std::string(wanted) == "translation")
+      it.rd.fail(it.keys.node("joint"), it.at("joint"), "'" + joint.name() + "' is a universal joint, which has two rotations (coordinate 1 about axis, 2 about axis2) only");
+    if (!it.keys.has("coordinate"))
+      it.rd.fail(it.node, it.at("coordinate"), "missing (required for a universal joint): 1 (the angle about axis) or 2 (the angle about axis2)");
+    const std::string w = it.keys.text("coordinate");
+    if (w != "1" && w != "2") bad_coordinate(it, w, kind);
+    return w == "1" ? Coordinate::universal_axis : Coordinate::universal_axis2;
+  }
   std::string has;
   if (kind.angle_driver) has = "a rotation about its axis";
   if (kind.displacement_driver) has += std::string(has.empty() ? "" : " and ") + "a translation along its axis";
   if (has.empty())
     it.rd.fail(it.keys.node("joint"), it.at("joint"),
-               "'" + joint.name() + "' is a " + kind.name + " joint, which has no single rotation or translation coordinate (joint springs, dampers, motors and joint sensors act on revolute, cylindrical and prismatic joints)");
+               "'" + joint.name() + "' is a " + kind.name + " joint, which has no single rotation or translation coordinate (joint springs, dampers, stops, motors and joint sensors act on revolute, cylindrical, prismatic and universal joints)");
   const bool both = kind.angle_driver && kind.displacement_driver;
   Coordinate c = kind.angle_driver ? Coordinate::rotation : Coordinate::translation;
   if (it.keys.has("coordinate")) {
     const std::string w = it.keys.text("coordinate");
-    if (w != "rotation" && w != "translation")
-      it.rd.fail(it.keys.node("coordinate"), it.at("coordinate"), "unknown coordinate '" + w + "' (expected rotation or translation)");
+    if (w != "rotation" && w != "translation") bad_coordinate(it, w, kind);
     c = w == "rotation" ? Coordinate::rotation : Coordinate::translation;
     if ((c == Coordinate::rotation && !kind.angle_driver) || (c == Coordinate::translation && !kind.displacement_driver))
       it.rd.fail(it.keys.node("coordinate"), it.at("coordinate"), "a " + kind.name + " joint has " + has + " only");
+    if (wanted && w != wanted) it.rd.fail(it.keys.node("coordinate"), it.at("coordinate"), "this sensor reads a " + std::string(wanted));
   } else if (wanted) {
     c = std::string(wanted) == "rotation" ? Coordinate::rotation : Coordinate::translation;
     if ((c == Coordinate::rotation && !kind.angle_driver) || (c == Coordinate::translation && !kind.displacement_driver))
@@ -221,19 +243,13 @@ Coordinate joint_coordinate_kind(const Item& it, const SpatialJoint& joint, cons
   return c;
 }
 
-/// The scalar node ψ of a joint's coordinate (joints/joint_coordinate.hpp) and its kind; the node is
-/// made on first use with its link to the joint, named JOINT.angle or JOINT.displacement.
-struct JointCoordinateNode {
-  int node;
-  Coordinate coordinate;
-  const char* variable() const { return coordinate == Coordinate::rotation ? "angle" : "displacement"; }
-};
-JointCoordinateNode joint_coordinate_node(const Item& it, const char* wanted = nullptr) {
+JointCoordinateNode joint_coordinate_node(const Item& it, const char* wanted) {
   const int ci = sensor_joint(it);
   const auto* joint = dynamic_cast<const SpatialJoint*>(it.model.constraints()[static_cast<size_t>(ci)].get());
   if (!joint) it.rd.fail(it.keys.node("joint"), it.at("joint"), "'" + it.keys.text("joint") + "' is not a joint of `joints`");
   const Coordinate c = joint_coordinate_kind(it, *joint, wanted);
-  const std::string name = joint->name() + (c == Coordinate::rotation ? ".angle" : ".displacement");
+  const char* suffix = c == Coordinate::rotation ? ".angle" : c == Coordinate::universal_axis ? ".angle1" : c == Coordinate::universal_axis2 ? ".angle2" : ".displacement";
+  const std::string name = joint->name() + suffix;
   if (const int id = it.model.find_node(name); id >= 0) return {id, c};
   Node nd;
   nd.name = name;
@@ -263,6 +279,8 @@ JointCoordinateNode joint_coordinate_node(const Item& it, const char* wanted = n
   return {id, c};
 }
 
+namespace {
+
 void read_joint_spring_damper(const Item& it) {
   const Section& k = it.keys;
   const JointCoordinateNode psi = joint_coordinate_node(it);
@@ -290,12 +308,13 @@ void read_joint_spring_damper(const Item& it) {
 void read_joint_motor(const Item& it) {
   const JointCoordinateNode psi = joint_coordinate_node(it);
   // `torque` drives a rotation, `force` a translation.
-  const char* key = psi.coordinate == Coordinate::rotation ? "torque" : "force";
-  const char* other = psi.coordinate == Coordinate::rotation ? "force" : "torque";
+  const char* key = psi.rotation() ? "torque" : "force";
+  const char* other = psi.rotation() ? "force" : "torque";
   if (it.keys.has(other))
     it.rd.fail(it.keys.node(other), it.at(other), std::string("this motor drives a ") +
-                                                      (psi.coordinate == Coordinate::rotation ? "rotation: give `torque`" : "translation: give `force`"));
+                                                      (psi.rotation() ? "rotation: give `torque`" : "translation: give `force`"));
   if (!it.keys.has(key)) it.rd.fail(it.node, it.at(key), "missing (required): the motor's " + std::string(key) + " (an expression)");
+  if (read_feedback_motor(it, psi, key)) return;  // names sensors: types/sensor_feedback_3d.cpp
   try {
     auto f = std::make_shared<ExpressionFunction>(it.keys.text(key), it.rd.scope(), std::vector<std::string>{psi.variable(), "speed", "t"});
     it.model.add_element(std::make_unique<JointCoordinateForce>(it.name, psi.node, ScalarForceLaw::expression(f, 0.0),
@@ -313,7 +332,7 @@ void read_joint_sensor(const Item& it, Sensor& sn, const char* wanted, bool spee
 /// The force elements a `force_output` sensor can read (their element names are the scene's).
 bool is_force_element(const Element& e) {
   const std::string type = e.type();
-  return type == "spring_damper" || type == "bushing" || type == "joint_spring_damper" || type == "joint_motor";
+  return type == "spring_damper" || type == "bushing" || type == "joint_spring_damper" || type == "joint_motor" || type == "joint_stop";
 }
 
 void read_force_output(const Item& it, Sensor& sn) {
@@ -324,6 +343,12 @@ void read_force_output(const Item& it, Sensor& sn) {
     if (!is_force_element(*elements[e])) continue;
     if (elements[e]->name() == name) sn.element = static_cast<int>(e);
     known += (known.empty() ? "" : ", ") + elements[e]->name();
+  }
+  if (sn.element < 0 && (sn.element = pending_motor_element(it, name)) >= 0) {
+    // A motor that reads sensors: its element is made once the sensors are read (sensor_feedback.hpp).
+    sn.kind = Sensor::Kind::ElementOutput;
+    sn.component = it.rd.choice(it.keys.node("component"), it.at("component"), {"coordinate", "speed", "drive"});
+    return;
   }
   if (sn.element < 0)
     it.rd.fail(it.keys.node("element"), it.at("element"), "no force element named '" + name + "' in `forces` (its force elements: " +
@@ -350,6 +375,14 @@ void read_constraint_violation(const Item& it, Sensor& sn) {
 }
 
 }  // namespace
+
+Key joint_coordinate_joint_key() {
+  return {"joint", KeyType::Text, "–", kRequired, "a revolute, cylindrical, prismatic or universal joint of `joints`"};
+}
+Key joint_coordinate_key() {
+  return {"coordinate", KeyType::Text, "–", "the joint's only one",
+          "`rotation` or `translation` (required on a cylindrical joint); `1` (the angle about axis) or `2` (about axis2) on a universal joint (required)"};
+}
 
 void register_force_elements_3d(SceneTypes& t) {
   const auto ends = [](const char* what) -> std::vector<Key> {
@@ -382,8 +415,8 @@ void register_force_elements_3d(SceneTypes& t) {
   t.loads.add("bushing", type_schema("forces.3d.bushing",
       "`bushing`: 6×6 stiffness and damping between two frames that coincide at t = 0 (a rubber mount, a compliant joint)", bushing),
       read_bushing);
-  const Key joint{"joint", KeyType::Text, "–", kRequired, "a revolute, cylindrical or prismatic joint of `joints`"};
-  const Key coordinate{"coordinate", KeyType::Text, "–", "the joint's only one", "`rotation` or `translation` (required on a cylindrical joint)"};
+  const Key joint = joint_coordinate_joint_key();
+  const Key coordinate = joint_coordinate_key();
   t.loads.add("joint_spring_damper", type_schema("forces.3d.joint_spring_damper",
       "`joint_spring_damper` on a joint's unwrapped angle (rotational) or displacement (translational)", {
       joint, coordinate,
@@ -397,16 +430,16 @@ void register_force_elements_3d(SceneTypes& t) {
       "`joint_motor`: a torque or force driving a joint's coordinate, a function of time, coordinate and speed", {
       joint, coordinate,
       {"torque", KeyType::Text, "N·m", "– (rotation: required)",
-       "torque in the sense of the angle: an expression of `t` (s), `angle` (rad), `speed` (rad/s) and `parameters`, e.g. `T_stall*(1 - speed/w0)`"},
-      {"force", KeyType::Text, "N", "– (translation: required)", "force in the sense of the displacement: an expression of `t`, `displacement` (m), `speed` (m/s)"}}),
+       "torque in the sense of the angle: an expression of `t` (s), `angle` (rad), `speed` (rad/s), `parameters` and sensors by name (feedback), e.g. `T_stall*(1 - speed/w0)`"},
+      {"force", KeyType::Text, "N", "– (translation: required)", "force in the sense of the displacement: an expression of `t`, `displacement` (m), `speed` (m/s), `parameters` and sensors"}}),
       read_joint_motor);
   const std::tuple<const char*, const char*, bool, const char*> joint_sensors[] = {
-      {"joint_angle", "rotation", false, "`joint_angle`: relative angle of a revolute or cylindrical joint, unwrapped over any number of turns (rad)"},
+      {"joint_angle", "rotation", false, "`joint_angle`: relative angle of a revolute, cylindrical or universal joint (body 1 relative to body 2), unwrapped over any number of turns (rad)"},
       {"joint_displacement", "translation", false, "`joint_displacement`: relative displacement of a prismatic or cylindrical joint along its axis (m)"},
       {"joint_speed", nullptr, true, "`joint_speed`: rate of a joint's angle (rad/s) or displacement (m/s)"}};
   for (const auto& [name, wanted, speed, doc] : joint_sensors) {
     std::vector<Key> keys{joint};
-    if (!wanted) keys.push_back(coordinate);
+    if (!wanted || std::string(wanted) == "rotation") keys.push_back(coordinate);  // joint_angle: 1 or 2 on a universal joint
     t.sensors.add(name, type_schema(std::string("sensors.3d.") + name, doc, keys),
                   [wanted = wanted, speed = speed](const Item& it, Sensor& sn) { read_joint_sensor(it, sn, wanted, speed); });
   }
@@ -419,9 +452,9 @@ void register_force_elements_3d(SceneTypes& t) {
       {"joint", KeyType::Text, "–", kRequired, "a joint of `joints` (or JOINT.angle, JOINT.displacement: a joint coordinate's link)"}}),
       read_constraint_violation);
   t.sensors.add("force_output", type_schema("sensors.3d.force_output", "`force_output`: a result of a force element of `forces`", {
-      {"element", KeyType::Text, "–", kRequired, "the name of a `spring_damper`, `bushing`, `joint_spring_damper` or `joint_motor`"},
+      {"element", KeyType::Text, "–", kRequired, "the name of a `spring_damper`, `bushing`, `joint_spring_damper`, `joint_motor` or `joint_stop`"},
       {"component", KeyType::Text, "–", kRequired,
-       "spring_damper: `length` (m), `elongation` (m), `rate` (m/s), `tension` (N); bushing: `deflection[0..5]` (u in m, γ in rad), `force[0..5]` (K ε + C ε̇: N, N·m); joint_spring_damper, joint_motor: `coordinate`, `speed`, `force` or `drive` (N·m or N on the coordinate)"}}),
+       "spring_damper: `length` (m), `elongation` (m), `rate` (m/s), `tension` (N); bushing: `deflection[0..5]` (u in m, γ in rad), `force[0..5]` (K ε + C ε̇: N, N·m); joint_spring_damper, joint_motor: `coordinate`, `speed`, `force` or `drive` (N·m or N on the coordinate); joint_stop: `coordinate`, `speed`, `penetration`, `force`"}}),
       read_force_output);
 }
 

@@ -37,6 +37,8 @@
   X(register_beams_3d)             \
   X(register_shells_3d)            \
   X(register_force_elements_3d)    \
+  X(register_joint_stops_3d)       \
+  X(register_sensor_feedback_3d)   \
   /* end of the spatial types */
 
 namespace alphaflex::scene_detail {
