@@ -225,7 +225,7 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
   bool fresh = !(allow_reuse && factored_h_ == h);
   double prev_q = 0.0, prev_l = 0.0;  // ‖Δq‖∞, ‖Δλ‖∞ of the previous iteration
   // The multipliers' own scale (docs/theory/starting_values.md §3): besides ‖λ‖∞, the change of λ
-  // that goes with a change of the coordinates by rtol S_i, Δλ₁/(rtol ρ₁) from the first iteration
+  // that goes with a change of the coordinates by rtol S_i, Δλ₁/(rtol ρ₁) from a first full iteration
   // (ρ₁ = max_i |Δq_i|/(atol + rtol S_i)): the test then asks of λ what it asks of q, whatever
   // β' ~ 1/h² amplifies, and never less than the round-off of q lets λ resolve (at 10 km from the
   // origin λ wanders by ~1e-7 N on the slider-crank, which a test on ‖λ‖∞ alone cannot pass).
@@ -253,9 +253,11 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
     report.history.push_back(rec);
     report.iterations = it;
     if (!std::isfinite(rec.correction_q) || !std::isfinite(rec.correction_lambda)) break;
-    if (it == 1 && rec.q_tolerance_ratio > 0.0 && std::isfinite(rec.q_tolerance_ratio))
+    if (it == 1 && !reuse && rec.q_tolerance_ratio > 0.0 && std::isfinite(rec.q_tolerance_ratio))
       lambda_amplification = rec.correction_lambda / (nt.rtol * rec.q_tolerance_ratio);
-    const double lambda_scale = std::max(sub.max_abs(n1.lambda), lambda_amplification);
+    // Only after a full Newton iteration, whose error is the next correction, quadratically smaller
+    // than this one; with an old S_t (linear rate θ) the error is θ/(1−θ)‖Δ‖ itself.
+    const double lambda_scale = std::max(sub.max_abs(n1.lambda), reuse ? 0.0 : lambda_amplification);
     if (!reuse) {
       converged = newton_converged(nt, rec, it, lambda_scale);
     } else if (it > 1) {
