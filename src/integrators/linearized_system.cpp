@@ -207,12 +207,12 @@ void NewtonScales::measure(NewtonRecord& rec, const Subdomain& sub, const Newton
   rec.q_roundoff_ratio = sub.max_abs(Eigen::VectorXd::Constant(1, floor_ratio));
 }
 
-bool newton_converged(const NewtonOptions& nt, const NewtonRecord& rec, int iteration, double lambda_norm) {
+bool newton_converged(const NewtonOptions& nt, const NewtonRecord& rec, int iteration, double lambda_scale) {
   // λ cannot be resolved below the round-off of q amplified by β' ~ 1/(βh²) (the index-3
   // amplification of Arnold & Brüls Sec. 3.3): once Δq is at round-off level, λ is as good as it gets.
   const bool q_converged = rec.q_tolerance_ratio <= 1.0;
   const bool q_at_roundoff = rec.q_roundoff_ratio <= 1.0;
-  const bool lambda_converged = rec.correction_lambda <= nt.atol_lambda + nt.rtol * lambda_norm;
+  const bool lambda_converged = rec.correction_lambda <= nt.atol_lambda + nt.rtol * lambda_scale;
   return q_converged && (lambda_converged || (iteration > 1 && q_at_roundoff));
 }
 

@@ -10,7 +10,9 @@
 //
 // Newton stopping: on the size of the last correction, |Δq_i| ≤ atol + rtol S_i (S_i the model's
 // size for a length, 1 rad for an angle: docs/theory/starting_values.md §3) and
-// ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞. A test on (scaled) residuals alone would stop earlier and earlier
+// ‖Δλ‖∞ ≤ atol_λ + rtol Λ, Λ = max(‖λ‖∞, ‖Δλ₁‖∞/(rtol ρ₁)) after a full Newton iteration (ρ₁ the
+// first iteration's max_i |Δq_i|/(atol + rtol S_i): the change of λ that goes with q's tolerance),
+// Λ = ‖λ‖∞ after one with an old S_t. A test on (scaled) residuals alone would stop earlier and earlier
 // as h → 0 (the dynamic residual is multiplied by βh²), and the errors left in Φ(q_n) are
 // amplified by 1/h² in λ (eq. 34), so the order would be lost at small h. The λ test is waived
 // once Δq is at round-off level (NewtonScales::measure): λ then carries the round-off of q times

@@ -57,9 +57,10 @@ struct NewtonScales {
 NewtonRecord newton_record(const Subdomain& sub, const ModelVector& residual, const Eigen::VectorXd& dq,
                            const Eigen::VectorXd& dlambda);
 /// The Newton stopping rule on the last correction (generalized_alpha.hpp explains why), on the
-/// scales of NewtonScales: |Δq_i| ≤ atol + rtol S_i for every unknown and ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞,
-/// the λ test waived once Δq is at round-off (NewtonScales::measure) after the first iteration.
-bool newton_converged(const NewtonOptions& options, const NewtonRecord& last, int iteration, double lambda_norm);
+/// scales of NewtonScales: |Δq_i| ≤ atol + rtol S_i for every unknown and ‖Δλ‖∞ ≤ atol_λ + rtol Λ
+/// (Λ = `lambda_scale`, the multipliers' scale: ‖λ‖∞, or more, generalized_alpha.hpp), the λ test
+/// waived once Δq is at round-off (NewtonScales::measure) after the first iteration.
+bool newton_converged(const NewtonOptions& options, const NewtonRecord& last, int iteration, double lambda_scale);
 /// The aligned table of a Newton history printed when it fails.
 std::string format_newton_history(const std::vector<NewtonRecord>& history, bool scaled);
 
