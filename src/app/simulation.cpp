@@ -13,6 +13,7 @@
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/progress.hpp"
 #include "alphaflex/app/run_objects.hpp"
+#include "alphaflex/app/sensor_integrals.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/app/summary_json.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
@@ -144,8 +145,12 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
 
   integrator.times().setup += MPI_Wtime() - wall0;  // partition, subdomain, preallocation, files
   std::vector<double> values;
+  SensorIntegrals integrals(sub.global_model().sensors());  // work of the loads, dissipated energy
+  if (restarting && !integrals.empty())
+    throw InputError(scene.file + ": a restart cannot continue the accumulated sensors (`work`): their sums are not in the checkpoint; run from t = 0");
   auto record = [&](const MechanicalState& st, bool fields) {
     values = sensor_values(sub, st);
+    integrals.integrate(st.t, values);
     // The observer sees the whole state in model order (a gather, O(model), only when it is set).
     if (opt.on_step) opt.on_step(sub.size() == 1 ? st : sub.gather(st));
     if (opt.keep_history) {

@@ -22,6 +22,8 @@
   X(register_point_sensors_2d)    \
   X(register_joint_reaction_2d)   \
   X(register_beams_2d)            \
+  X(register_force_elements_2d)   \
+  X(register_energy_sensors_2d)   \
   /* end of the planar types */
 
 #define ALPHAFLEX_SPATIAL_TYPES(X) \
@@ -37,6 +39,7 @@
   X(register_beams_3d)             \
   X(register_shells_3d)            \
   X(register_force_elements_3d)    \
+  X(register_energy_sensors_3d)    \
   /* end of the spatial types */
 
 namespace alphaflex::scene_detail {
