@@ -137,6 +137,8 @@ void read_mesh_and_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& root, 
     lists_or += (lists_or.empty() ? "`" : " or `") + type.name + "`";
     shapes += (shapes.empty() ? "" : " or ") + type.name + ": [{" + type.build.item_keys + "}]";
   }
+  if (!mn && root["initial_conditions"])
+    rd.fail(root["initial_conditions"], "initial_conditions", "the scene has no `mesh`: initial conditions are given to mesh groups (rigid bodies have their own `velocity`, `angular_velocity`)");
   if (!mn && first == blocks.size()) return;
   if (!mn) rd.fail(given[first], blocks[first].name, lists + " need a `mesh` (a .geo or .msh file with their physical groups)");
   if (first == blocks.size()) rd.fail(mn, "mesh", "no " + lists_or + " use this mesh (give " + shapes + ")");

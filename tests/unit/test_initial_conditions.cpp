@@ -211,4 +211,9 @@ TEST(InitialConditions, BadInputIsRefusedNamingTheKey) {
     const std::string msg = input_error_of([&] { read_scene_text(head + tail, source_path("bad.yaml")); });
     EXPECT_NE(msg.find(expected), std::string::npos) << "got: " << msg << "\nexpected: " << expected;
   }
+  const std::string no_mesh = input_error_of([&] {
+    read_scene_text("name: bad\ndimension: 3\nsolver: {h: 0.01, t_end: 0.01}\nbodies:\n  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [0, 0, 0]}\n"
+                    "initial_conditions:\n  - {group: beam, velocity: [1, 0, 0]}\n", "bad.yaml");
+  });
+  EXPECT_NE(no_mesh.find("initial_conditions: the scene has no `mesh`"), std::string::npos) << no_mesh;
 }
