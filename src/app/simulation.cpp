@@ -13,6 +13,7 @@
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/progress.hpp"
 #include "alphaflex/app/run_objects.hpp"
+#include "alphaflex/app/sensor_integrals.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/app/summary_json.hpp"
 #include "alphaflex/assembly/diagnostics.hpp"
@@ -148,13 +149,20 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   std::vector<double> values;
   // Sensor rows (output.sensors, output.sensors_dt; io/sensor_schedule.hpp). The values are
   // evaluated only for a row, a study's history or the last step (the summary's final values); a
-  // static analysis writes every load step it records.
+  // static analysis writes every load step it records. Accumulated sensors (`work`) need the
+  // values of every step (trapezoidal rule over the accepted steps).
   const bool dynamic = rs.analysis != Analysis::Static;
   SensorSchedule sensor_rows(rs.sensors, dynamic ? rs.sensors_dt : 0.0, restarting ? ck.state.t : 0.0, !restarting);
+  SensorIntegrals integrals(sub.global_model().sensors());  // work of the loads, dissipated energy
+  if (restarting && !integrals.empty())
+    throw InputError(scene.file + ": a restart cannot continue the accumulated sensors (`work`): their sums are not in the checkpoint; run from t = 0");
   auto record = [&](const MechanicalState& st, bool fields) {
     const bool last = !dynamic || st.t >= rs.t_end - 1e-12 * std::max(1.0, std::fabs(rs.t_end));
     const bool row = sensor_rows.due(st.t, last);
-    if (row || last || opt.keep_history) values = sensor_values(sub, st);
+    if (row || last || opt.keep_history || !integrals.empty()) {
+      values = sensor_values(sub, st);
+      integrals.integrate(st.t, values);
+    }
     // The observer sees the whole state in model order (a gather, O(model), only when it is set).
     if (opt.on_step) opt.on_step(sub.size() == 1 ? st : sub.gather(st));
     if (opt.keep_history) {

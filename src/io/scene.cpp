@@ -38,6 +38,7 @@ const Schema& top_schema() {
       {"mesh", KeyType::Map, "–", "none", "the gmsh mesh of the beams and shells"},
       {"beams", KeyType::List, "–", "none", "beam blocks on curve groups of the mesh"},
       {"shells", KeyType::List, "–", "none", "shell blocks on surface groups of the mesh (3D)"},
+      {"initial_conditions", KeyType::List, "–", "none", "placement and rigid initial velocity of mesh groups (3D)"},
       {"solver", KeyType::Map, "–", "all defaults", "time integration and statics"},
       {"output", KeyType::Map, "–", "all defaults", "field output, checkpoints, progress"},
       {"bodies", KeyType::List, "–", "none (the scene needs bodies or beams)", "bodies"},
@@ -282,6 +283,7 @@ std::vector<const Schema*> section_schemas() {
   v.push_back(&mesh_schema());
   v.push_back(&modes_schema());
   v.push_back(&campbell_schema());
+  v.push_back(&initial_conditions_schema());
   for (const auto& s : input::time_function_schemas()) v.push_back(&s);
   return v;
 }

@@ -137,10 +137,13 @@ void read_mesh_and_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& root, 
     lists_or += (lists_or.empty() ? "`" : " or `") + type.name + "`";
     shapes += (shapes.empty() ? "" : " or ") + type.name + ": [{" + type.build.item_keys + "}]";
   }
+  if (!mn && root["initial_conditions"])
+    rd.fail(root["initial_conditions"], "initial_conditions", "the scene has no `mesh`: initial conditions are given to mesh groups (rigid bodies have their own `velocity`, `angular_velocity`)");
   if (!mn && first == blocks.size()) return;
   if (!mn) rd.fail(given[first], blocks[first].name, lists + " need a `mesh` (a .geo or .msh file with their physical groups)");
   if (first == blocks.size()) rd.fail(mn, "mesh", "no " + lists_or + " use this mesh (give " + shapes + ")");
   sb.blocks.mesh = load_mesh(rd, mn);
+  apply_initial_conditions(rd, sb.blocks, root, dimension);
   const MeshData& mesh = sb.blocks.mesh;
   if (dimension == 2)
     for (size_t k = 0; k < mesh.points.size(); ++k)
@@ -154,6 +157,7 @@ void read_mesh_and_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& root, 
   for (size_t k = 0; k < given.size(); ++k)
     if (given[k]) read_blocks(rd, sb, given[k], blocks[k]);
   check_named_points(rd, mn, mesh, sb.blocks.node_of);
+  check_group_velocities(rd, sb.blocks, root);
   if (dimension == 3) keep_groups(sb, mesh, sb.blocks.node_of);
 }
 

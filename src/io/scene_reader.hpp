@@ -5,6 +5,7 @@
 // Section, schemas) is io/schema.hpp.
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -61,6 +62,14 @@ struct MeshBlocks {
   std::vector<int> node_of;                ///< mesh node → model node (−1: none yet)
   std::map<int, std::string> point_name;   ///< mesh node → name of its named point
   std::set<std::string> groups_used;       ///< groups a block uses (one block per group)
+  std::map<std::string, Eigen::Matrix3d> placement;  ///< rotation of each placed group (scene_initial.cpp)
+  /// Mesh node → (velocity, angular velocity), world components, of an initial velocity field (scene_initial.cpp).
+  std::map<int, std::array<Eigen::Vector3d, 2>> velocity;
+  /// A direction given for a block on `group` (beam orientation, shell material axis), turned with the group's placement.
+  Eigen::Vector3d placed(const std::string& group, const Eigen::Vector3d& d) const {
+    const auto it = placement.find(group);
+    return it == placement.end() ? d : Eigen::Vector3d(it->second * d);
+  }
 };
 
 class SceneBuilder {
@@ -210,6 +219,13 @@ std::vector<const Schema*> section_schemas();
 const Schema& mesh_schema();                ///< scene_mesh.cpp
 const Schema& modes_schema();               ///< scene_modes.cpp
 const Schema& campbell_schema();            ///< scene_modes.cpp (modes.campbell)
+const Schema& initial_conditions_schema();  ///< scene_initial.cpp
+
+/// `initial_conditions`, before the blocks are read: moves the mesh points of the placed groups and
+/// sets each velocity field's (v, ω) at its mesh points (MeshBlocks::velocity).
+void apply_initial_conditions(Reader& rd, MeshBlocks& blocks, const YAML::Node& root, int dimension);
+/// After the blocks: every mesh point given a velocity is a node of a block (else an error).
+void check_group_velocities(const Reader& rd, const MeshBlocks& blocks, const YAML::Node& root);
 
 /// Reads `mesh` and the element blocks the scene's dimension registers (`beams`, `shells`): the
 /// blocks' nodes and elements, then every physical group as model nodes (sb.mesh_groups).

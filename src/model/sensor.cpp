@@ -1,5 +1,7 @@
 #include "alphaflex/model/sensor.hpp"
 
+#include <algorithm>
+
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/model/model.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
@@ -17,6 +19,59 @@ Eigen::Vector3d spatial_point(const Model& m, const MechanicalState& st, int nod
   if (which == 1) return st.v.segment<3>(nd.first_dof) + p.R * W.cross(s);
   const Eigen::Vector3d Wd = st.qdd.segment<3>(nd.first_dof + 3);
   return st.qdd.segment<3>(nd.first_dof) + p.R * (Wd.cross(s) + W.cross(W.cross(s)));
+}
+
+/// r(q, v, q̈ = 0, t) of an element at load factor λ (1: as in a dynamic run), inertia left out;
+/// at rest if `still`.
+Eigen::VectorXd forces(const Element& e, LocalState ls, double load_factor, bool still = false) {
+  ls.qdd.setZero();
+  if (still) ls.v.setZero();
+  ls.load_factor = load_factor;
+  LocalResidual out;
+  out.reset(static_cast<int>(ls.v.size()), false);
+  e.evaluate(ls, out, false);
+  return out.r;
+}
+
+/// Part `which` of an element's energy (J) or power (W): 0 kinetic, 1 strain, 2 potential of
+/// gravity, 3 their total, 4 the power of its loads on the model, 5 the power it dissipates.
+/// What exchanges which energy follows from the element's own residual, so that every element
+/// type takes part without code of its own: an element with mass (M = ∂r/∂q̈ ≠ 0: bodies, beams,
+/// shells) has kinetic energy ½ vᵀMv and, in the part of r that the load factor λ scales, gravity
+/// f_g = r(λ = 0) − r(λ = 1), constant nodal forces whose potential is −Σ f_g·x over its nodes'
+/// positions (the consistent weights of beams and shells integrate −∫ρ g·x exactly); an element
+/// without mass is a load in the part λ scales (power −vᵀ(r(λ = 1) − r(λ = 0))) and a force
+/// element in the rest, which dissipates vᵀ(r(q, v) − r(q, 0)) at λ = 0 (c L̇² for a linear
+/// damper, ε̇ᵀCε̇ for a bushing). docs/theory/force_elements.md, energy balance.
+double energy_part(const Model& model, const Element& e, const LocalState& ls, int which) {
+  LocalResidual t;
+  t.reset(static_cast<int>(ls.v.size()), true);
+  e.evaluate(ls, t, true);
+  const bool mass = t.M.cwiseAbs().maxCoeff() > 0.0;
+  auto gravity = [&] {
+    if (!mass) return 0.0;
+    const Eigen::VectorXd fg = forces(e, ls, 0.0, true) - forces(e, ls, 1.0, true);
+    double V = 0.0;
+    int oc = 0, od = 0;  // the node's first configuration number and unknown in the local vectors
+    for (int n : e.nodes()) {
+      const Node& nd = model.node(n);
+      // Positions: x of a frame (its first 3 unknowns translate it), all coordinates of a planar
+      // node (θ takes no gravity force: the weight acts at the centre of mass).
+      const int np = nd.spatial() ? 3 : nd.ndof;
+      V -= fg.segment(od, np).dot(ls.q.segment(oc, np));
+      oc += nd.nconf;
+      od += nd.ndof;
+    }
+    return V;
+  };
+  switch (which) {
+    case 0: return 0.5 * ls.v.dot(t.M * ls.v);
+    case 1: return e.elastic_energy(ls.q);
+    case 2: return gravity();
+    case 3: return 0.5 * ls.v.dot(t.M * ls.v) + e.elastic_energy(ls.q) + gravity();
+    case 4: return mass ? 0.0 : -ls.v.dot(forces(e, ls, 1.0) - forces(e, ls, 0.0));
+    default: return mass ? 0.0 : ls.v.dot(forces(e, ls, 0.0) - forces(e, ls, 0.0, true));
+  }
 }
 
 }  // namespace
@@ -73,14 +128,16 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
     case Kind::NodeCoordinate: return s.q[model.node(node).first_conf];
     case Kind::NodeSpeed: return s.v[model.node(node).first_dof];
     case Kind::ElementEnergy: {
-      const Element& e = *model.elements()[static_cast<size_t>(element)];
-      const LocalState ls = model.local_state(e, s);
-      if (component == 1) return e.elastic_energy(ls.q);
-      // ½ q̇ᵀ M q̇ with the element's own mass matrix M = ∂r/∂q̈ (rigid bodies: ½ m ẋ² + ½ Ωᵀ J Ω).
-      LocalResidual out;
-      out.reset(static_cast<int>(ls.v.size()), true);
-      e.evaluate(ls, out, true);
-      return 0.5 * ls.v.dot(out.M * ls.v);
+      // One element, or the sum over the element range [element, node2) when node2 > element (an
+      // energy or work sensor `of` a block, a body or the model: io/types/energy_sensors.cpp; each
+      // rank sums the range's elements it owns, partition/subdomain.cpp); element < 0: none here.
+      if (element < 0) return 0.0;
+      double sum = 0.0;
+      for (int k = element; k < std::max(node2, element + 1); ++k) {
+        const Element& e = *model.elements()[static_cast<size_t>(k)];
+        sum += energy_part(model, e, model.local_state(e, s), component);
+      }
+      return sum;
     }
     case Kind::JointViolation: {
       const Constraint& c = *model.constraints()[static_cast<size_t>(constraint)];

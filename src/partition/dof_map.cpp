@@ -61,7 +61,10 @@ DofMap::DofMap(const Model& model, MPI_Comm comm) {
   for (const auto& c : model.constraints()) constraint_owner_.push_back(first_node_owner(c->nodes()));
   for (const Sensor& s : model.sensors()) {
     // A sensor that reads a joint or an element is evaluated where it is assembled.
-    if (s.constraint >= 0) sensor_owner_.push_back(constraint_owner_[static_cast<size_t>(s.constraint)]);
+    // An energy sum over an element range (node2 > element, model/sensor.cpp) is on every rank:
+    // each adds the elements it owns (subdomain.cpp); rank 0 is its nominal owner.
+    if (s.kind == Sensor::Kind::ElementEnergy && s.node2 > s.element) sensor_owner_.push_back(0);
+    else if (s.constraint >= 0) sensor_owner_.push_back(constraint_owner_[static_cast<size_t>(s.constraint)]);
     else if (s.element >= 0) sensor_owner_.push_back(element_owner_[static_cast<size_t>(s.element)]);
     else sensor_owner_.push_back(node_part_[static_cast<size_t>(s.node)]);
   }

@@ -28,8 +28,11 @@ Subdomain::Subdomain(const Model& global, MPI_Comm comm) : global_(global), comm
   for (size_t c = 0; c < global.constraints().size(); ++c)
     if (map_.constraint_owner(static_cast<int>(c)) == me)
       for (int n : global.constraints()[c]->nodes()) need(n);
+  // An energy sum over the element range [element, node2) (model/sensor.cpp) needs no nodes beyond
+  // its elements'; it is on every rank, over the range's elements this rank owns.
+  auto is_sum = [](const Sensor& sn) { return sn.kind == Sensor::Kind::ElementEnergy && sn.node2 > sn.element; };
   for (size_t s = 0; s < global.sensors().size(); ++s) {
-    if (map_.sensor_owner(static_cast<int>(s)) != me) continue;
+    if (map_.sensor_owner(static_cast<int>(s)) != me || is_sum(global.sensors()[s])) continue;
     const Sensor& sn = global.sensors()[s];
     need(sn.node);
     need(sn.node2);
@@ -66,8 +69,22 @@ Subdomain::Subdomain(const Model& global, MPI_Comm comm) : global_(global), comm
     local_.add_constraint(global.constraints()[c]->renumbered(local_nodes(global.constraints()[c]->nodes())));
   }
   for (size_t s = 0; s < global.sensors().size(); ++s) {
-    if (map_.sensor_owner(static_cast<int>(s)) != me) continue;
     Sensor sn = global.sensors()[s];
+    if (is_sum(sn)) {
+      // The owned elements of a global range are a range of the local ones (both in global order).
+      int first = -1, end = -1;
+      for (int e = sn.element; e < sn.node2; ++e)
+        if (const int l = element_local[static_cast<size_t>(e)]; l >= 0) {
+          if (first < 0) first = l;
+          end = l + 1;
+        }
+      sn.element = first;
+      sn.node2 = end;
+      sensor_global_.push_back(static_cast<int>(s));
+      local_.add_sensor(std::move(sn));
+      continue;
+    }
+    if (map_.sensor_owner(static_cast<int>(s)) != me) continue;
     auto remap = [&](int& n) {
       if (n >= 0) n = local_of[static_cast<size_t>(n)];
     };

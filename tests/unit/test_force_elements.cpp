@@ -13,7 +13,7 @@
 #include "alphaflex/elements/joint_coordinate_force.hpp"
 #include "alphaflex/elements/spatial_force_elements.hpp"
 #include "alphaflex/joints/joint_coordinate.hpp"
-#include "test_support.hpp"
+#include "test_scene_runs.hpp"
 
 using namespace alphaflex;
 using namespace alphaflex::testing;
@@ -474,17 +474,6 @@ TEST(JointCoordinateForce, TangentsAreTheLawsDerivativesAndAMotorScalesWithTheLo
   EXPECT_NEAR(element_residual(spring, s)[0], 20.0 * (17.3 - 0.3) + 0.5 * 42.0 + 1.0, 1e-12);  // not scaled
 }
 
-namespace {
-RunSummary run_text(const std::string& yaml, const std::string& label) {
-  Scene scene = read_scene_text(yaml, label);
-  RunOptions opt;
-  opt.write_results = false;
-  opt.verbose = false;
-  opt.keep_history = true;
-  return run_simulation(scene, opt, PETSC_COMM_WORLD);
-}
-}  // namespace
-
 TEST(JointSpringDamper, PendulumOnARotationalSpringHasTheClosedFormSmallOscillationFrequency) {
   // A rod (m = 2 kg, centre 0.5 m below the hinge, J_c = 0.1 kg m²) on a revolute joint with a
   // rotational spring k = 20 N m/rad, under gravity: J_O θ̈ + (k + m g l) θ = 0, J_O = J_c + m l²,
@@ -503,11 +492,7 @@ TEST(JointSpringDamper, PendulumOnARotationalSpringHasTheClosedFormSmallOscillat
     << "sensors:\n  - {name: angle, type: joint_angle, joint: hinge}\n";
   const RunSummary r = run_text(y.str(), "pendulum_spring.yaml");
   // Zero crossings upward (linear interpolation): one period apart.
-  std::vector<double> up;
-  for (size_t i = 1; i < r.times_out.size(); ++i) {
-    const double a = r.sensor_history[i - 1][0], b = r.sensor_history[i][0];
-    if (a < 0.0 && b >= 0.0) up.push_back(r.times_out[i - 1] + (r.times_out[i] - r.times_out[i - 1]) * a / (a - b));
-  }
+  const std::vector<double> up = upward_zero_crossings(r, 0);
   ASSERT_GE(up.size(), 2u);
   const double period = up[1] - up[0], err = std::fabs(period - T) / T;
   std::printf("[ closed   ] pendulum on a rotational spring: period %.7f s, closed form %.7f s, rel. error %.1e\n", period, T, err);

@@ -20,6 +20,11 @@ class SpringDamper2D final : public Element {
   const char* type() const override { return "spring_damper"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<SpringDamper2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  /// ½ k (L − L0)².
+  double elastic_energy(const Eigen::VectorXd& q) const override {
+    const double e = length(q) - l0_;
+    return 0.5 * k_ * e * e;
+  }
 
   /// Current length (or elongation along the axis) for the given local coordinates.
   double length(const Eigen::VectorXd& q) const;

@@ -14,7 +14,11 @@ struct Sensor {
                     PointAcceleration, JointReaction, BodyRotation, ElementOutput,
                     NodeCoordinate,  ///< q of a one-coordinate node (a joint coordinate, joints/joint_coordinate.hpp)
                     NodeSpeed,       ///< q̇ of the same
-                    ElementEnergy,   ///< of one element: component 0 kinetic ½ q̇ᵀ M q̇, 1 strain (J)
+                    /// Of one element, or summed over the element range [element, node2) when node2 >
+                    /// element (every rank sums the range's elements it owns): component 0 kinetic
+                    /// ½ q̇ᵀ M q̇, 1 strain, 2 gravity potential, 3 their total (J); 4 power of the
+                    /// loads, 5 power dissipated (W), which app/sensor_integrals.hpp integrates.
+                    ElementEnergy,
                     JointViolation };  ///< |Φ| of one joint (its equations' units: m, or 1 for axis products)
   std::string name;
   Kind kind = Kind::BodyAngle;

@@ -42,7 +42,7 @@ void read_beam_block_3d(const Item& it) {
   const Section& k = it.keys;
   const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
   const BeamSection section = read_beam_section(it.rd, k.node("section"), it.at("section"));
-  const Eigen::Vector3d orient = k.direction("orientation");
+  const Eigen::Vector3d orient = it.sb.blocks.placed(k.text("group"), k.direction("orientation"));
   const MeshData& mesh = it.sb.blocks.mesh;
   for (size_t e = 0; e < block.elements.size(); ++e) {
     const int ma = block.elements[e][0], mb = block.elements[e][1];

@@ -1,5 +1,8 @@
 #include "common.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <sstream>
+
 #include "alphaflex/core/rotation.hpp"
 
 namespace alphaflex::scene_detail {
@@ -119,8 +122,45 @@ int block_node(const Item& it, int m, NodeKind kind, const Eigen::VectorXd& q0, 
   if (it.model.find_node(nd.name) >= 0) it.rd.fail(it.node, it.path, "mesh point '" + nd.name + "' has the name of another node or body");
   nd.q0 = q0;
   nd.v0 = v0;
+  const auto v = b.velocity.find(m);  // an initial velocity field (scene_initial.cpp): Ω in the node frame
+  if (v != b.velocity.end() && kind == NodeKind::Frame3D) {
+    nd.v0.resize(6);
+    nd.v0 << v->second[0], pose_of(q0.data()).R.transpose() * v->second[1];
+  }
   b.node_of[i] = it.model.add_node(nd);
   return b.node_of[i];
+}
+
+Eigen::MatrixXd read_psd_matrix(const Item& it, const std::string& key, int size, const char* units) {
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(size, size);
+  if (!it.keys.has(key)) return m;
+  const YAML::Node n = it.keys.node(key);
+  const std::string at = it.at(key);
+  const std::string expected = "expected " + std::to_string(size) + " numbers (the diagonal) or " + std::to_string(size) + " rows of " + std::to_string(size) + " numbers (" + units + ")";
+  if (!n.IsSequence() || n.size() != static_cast<size_t>(size)) it.rd.fail(n, at, expected);
+  if (n[0].IsScalar()) {
+    for (int i = 0; i < size; ++i) m(i, i) = it.rd.number(n[i], at + "[" + std::to_string(i) + "]");
+  } else {
+    for (int i = 0; i < size; ++i) {
+      const YAML::Node row = n[i];
+      const std::string rp = at + "[" + std::to_string(i) + "]";
+      if (!row.IsSequence() || row.size() != static_cast<size_t>(size)) it.rd.fail(row, rp, expected);
+      for (int j = 0; j < size; ++j) m(i, j) = it.rd.number(row[j], rp + "[" + std::to_string(j) + "]");
+    }
+  }
+  const double scale = m.cwiseAbs().maxCoeff();
+  if ((m - m.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
+    it.rd.fail(n, at, "the matrix must be symmetric (a bushing stores the energy ½ εᵀKε and dissipates ½ ε̇ᵀCε̇)");
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(m);
+  const double lowest = es.eigenvalues().minCoeff();
+  if (lowest < -1e-12 * scale) {
+    std::ostringstream os;
+    os << "the matrix must be positive semi-definite, but it has the eigenvalue " << lowest
+       << " (direction [" << es.eigenvectors().col(0).transpose().format(Eigen::IOFormat(4, Eigen::DontAlignCols, ", ", ", "))
+       << "] of (u, γ)): it would push the bodies apart instead of holding them";
+    it.rd.fail(n, at, os.str());
+  }
+  return m;
 }
 
 }  // namespace alphaflex::scene_detail

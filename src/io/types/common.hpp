@@ -86,4 +86,15 @@ const Block& mesh_block(const Item& it, const std::vector<Block>& blocks, const 
 /// (types/beams_3d.cpp; the planar beams read a material section with it too).
 BeamSection read_beam_section(const Reader& rd, const YAML::Node& n, const std::string& key);
 
+/// An energy sum (Sensor::Kind::EnergySum, component `component`) over the elements the item's
+/// `of` names (energy_sensors.cpp).
+void read_energy_of(const Item& it, Sensor& sn, int component);
+/// The `of` and `kind` keys of the `energy` sensor.
+Key energy_of_key();
+Key energy_kind();
+
+/// A size×size matrix key: `size` numbers (the diagonal) or `size` rows of `size`; symmetric and
+/// positive semi-definite (a bushing's stiffness or damping, of (u, γ)); zero when absent.
+Eigen::MatrixXd read_psd_matrix(const Item& it, const std::string& key, int size, const char* units);
+
 }  // namespace alphaflex::scene_detail

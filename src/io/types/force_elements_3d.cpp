@@ -128,35 +128,7 @@ void read_spring_damper_3d(const Item& it) {
 
 /// A 6×6 matrix: 6 numbers (the diagonal) or 6 rows of 6; symmetric and positive semi-definite.
 Bushing::Matrix6 read_matrix6(const Item& it, const std::string& key, const char* units) {
-  Bushing::Matrix6 m = Bushing::Matrix6::Zero();
-  if (!it.keys.has(key)) return m;
-  const YAML::Node n = it.keys.node(key);
-  const std::string at = it.at(key);
-  const std::string expected = std::string("expected 6 numbers (the diagonal) or 6 rows of 6 numbers (") + units + ")";
-  if (!n.IsSequence() || n.size() != 6) it.rd.fail(n, at, expected);
-  if (n[0].IsScalar()) {
-    for (int i = 0; i < 6; ++i) m(i, i) = it.rd.number(n[i], at + "[" + std::to_string(i) + "]");
-  } else {
-    for (int i = 0; i < 6; ++i) {
-      const YAML::Node row = n[i];
-      const std::string rp = at + "[" + std::to_string(i) + "]";
-      if (!row.IsSequence() || row.size() != 6) it.rd.fail(row, rp, expected);
-      for (int j = 0; j < 6; ++j) m(i, j) = it.rd.number(row[j], rp + "[" + std::to_string(j) + "]");
-    }
-  }
-  const double scale = m.cwiseAbs().maxCoeff();
-  if ((m - m.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
-    it.rd.fail(n, at, "the matrix must be symmetric (a bushing stores the energy ½ εᵀKε and dissipates ½ ε̇ᵀCε̇)");
-  const Eigen::SelfAdjointEigenSolver<Bushing::Matrix6> es(m);
-  const double lowest = es.eigenvalues().minCoeff();
-  if (lowest < -1e-12 * scale) {
-    std::ostringstream os;
-    os << "the matrix must be positive semi-definite, but it has the eigenvalue " << lowest
-       << " (direction [" << es.eigenvectors().col(0).transpose().format(Eigen::IOFormat(4, Eigen::DontAlignCols, ", ", ", "))
-       << "] of (u, γ)): it would push the bodies apart instead of holding them";
-    it.rd.fail(n, at, os.str());
-  }
-  return m;
+  return read_psd_matrix(it, key, 6, units);
 }
 
 void read_bushing(const Item& it) {
@@ -358,6 +330,9 @@ void read_force_output(const Item& it, Sensor& sn) {
 }
 
 void read_energy(const Item& it, Sensor& sn) {
+  if (it.keys.has("of") == it.keys.has("element"))
+    it.rd.fail(it.node, it.path, "give either `element` (one element) or `of` (a block, a body, a force element or `model`)");
+  if (it.keys.has("of")) return read_energy_of(it, sn, it.keys.choice("kind"));
   const std::string name = it.keys.text("element");
   const auto& elements = it.model.elements();
   for (size_t e = 0; e < elements.size(); ++e)
@@ -367,6 +342,7 @@ void read_energy(const Item& it, Sensor& sn) {
                                                             "' (a rigid body's name, a force element's, or BLOCK[k] for element k of a beam or shell block)");
   sn.kind = Sensor::Kind::ElementEnergy;
   sn.component = it.keys.choice("kind");
+  if (sn.component > 1) sn.node2 = sn.element + 1;  // potential, total: the sum over this one element (model/sensor.cpp)
 }
 
 void read_constraint_violation(const Item& it, Sensor& sn) {
@@ -443,10 +419,10 @@ void register_force_elements_3d(SceneTypes& t) {
     t.sensors.add(name, type_schema(std::string("sensors.3d.") + name, doc, keys),
                   [wanted = wanted, speed = speed](const Item& it, Sensor& sn) { read_joint_sensor(it, sn, wanted, speed); });
   }
-  t.sensors.add("energy", type_schema("sensors.3d.energy", "`energy` of one element: kinetic ½ q̇ᵀ M q̇ or strain (J)", {
-      {"element", KeyType::Text, "–", kRequired, "a rigid body, a force element, or BLOCK[k] (element k of a beam or shell block)"},
-      {"kind", KeyType::Choice, "–", kRequired, "kinetic: with the element's mass matrix; strain: the stored elastic energy (linear springs, bushings, beams, shells)",
-       {}, "", "", {"kinetic", "strain"}}}), read_energy);
+  t.sensors.add("energy", type_schema("sensors.3d.energy", "`energy` of one element or a sum over a block, a body or the model (J)", {
+      {"element", KeyType::Text, "–", "– (this or `of`)", "a rigid body, a force element, or BLOCK[k] (element k of a beam or shell block)"},
+      energy_of_key(),
+      energy_kind()}), read_energy);
   t.sensors.add("constraint_violation", type_schema("sensors.3d.constraint_violation",
       "`constraint_violation`: |Φ| of a joint's equations (m, and 1 for the products of axes)", {
       {"joint", KeyType::Text, "–", kRequired, "a joint of `joints` (or JOINT.angle, JOINT.displacement: a joint coordinate's link)"}}),

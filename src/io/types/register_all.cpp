@@ -22,6 +22,8 @@
   X(register_point_sensors_2d)    \
   X(register_joint_reaction_2d)   \
   X(register_beams_2d)            \
+  X(register_force_elements_2d)   \
+  X(register_energy_sensors_2d)   \
   /* end of the planar types */
 
 #define ALPHAFLEX_SPATIAL_TYPES(X) \
@@ -39,6 +41,7 @@
   X(register_force_elements_3d)    \
   X(register_joint_stops_3d)       \
   X(register_sensor_feedback_3d)   \
+  X(register_energy_sensors_3d)    \
   /* end of the spatial types */
 
 namespace alphaflex::scene_detail {

@@ -87,7 +87,7 @@ void read_shell_block(const Item& it) {
                                                                             : DirectorInterpolation::geodesic;
   const double kink = k.number("kink_angle", 20.0);
   const bool axis_given = k.has("material_axis");
-  const Eigen::Vector3d axis = k.direction("material_axis", Eigen::Vector3d::UnitX());
+  const Eigen::Vector3d axis = it.sb.blocks.placed(k.text("group"), k.direction("material_axis", Eigen::Vector3d::UnitX()));
   const MeshData& mesh = it.sb.blocks.mesh;
   std::vector<std::vector<Eigen::Vector3d>> dirs;
   try {
