@@ -20,4 +20,21 @@ void SensorIntegrals::integrate(double t, std::vector<double>& values) {
   started_ = true;
 }
 
+std::vector<double> SensorIntegrals::state() const {
+  if (which_.empty()) return {};
+  std::vector<double> s{t_};
+  s.insert(s.end(), integral_.begin(), integral_.end());
+  s.insert(s.end(), power_.begin(), power_.end());
+  return s;
+}
+
+bool SensorIntegrals::restore(const std::vector<double>& state) {
+  if (state.size() != 1 + 2 * which_.size()) return false;
+  t_ = state[0];
+  std::copy(state.begin() + 1, state.begin() + 1 + which_.size(), integral_.begin());
+  std::copy(state.begin() + 1 + which_.size(), state.end(), power_.begin());
+  started_ = true;
+  return true;
+}
+
 }  // namespace alphaflex

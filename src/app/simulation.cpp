@@ -154,8 +154,11 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   const bool dynamic = rs.analysis != Analysis::Static;
   SensorSchedule sensor_rows(rs.sensors, dynamic ? rs.sensors_dt : 0.0, restarting ? ck.state.t : 0.0, !restarting);
   SensorIntegrals integrals(sub.global_model().sensors());  // work of the loads, dissipated energy
-  if (restarting && !integrals.empty())
-    throw InputError(scene.file + ": a restart cannot continue the accumulated sensors (`work`): their sums are not in the checkpoint; run from t = 0");
+  if (restarting && !integrals.empty() && !integrals.restore(ck.position.accumulated))
+    throw InputError(opt.restart + ": the checkpoint has no running sums of this scene's " +
+                     std::to_string(integrals.state().size() / 2) +
+                     " accumulated sensors (`work`; it holds " + std::to_string(ck.position.accumulated.size() / 2) +
+                     "): it is of a scene with other sensors; run from t = 0");
   auto record = [&](const MechanicalState& st, bool fields) {
     const bool last = !dynamic || st.t >= rs.t_end - 1e-12 * std::max(1.0, std::fabs(rs.t_end));
     const bool row = sensor_rows.due(st.t, last);
@@ -296,6 +299,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   const std::unique_ptr<StepController> controller = make_step_controller(h, rs.t_end, rs.step_cuts, adaptive);
   const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
   Checkpointer checkpointer(sub, writer.get(), checkpoint_path, rs.parameters, h, rs.checkpoint_keep);
+  if (!integrals.empty()) checkpointer.set_accumulated([&integrals] { return integrals.state(); });
   TimeLoopSettings ls;
   ls.output_every = rs.output_every;
   ErrorFilter filter(system, solver, rs.parameters, rs.integrator);

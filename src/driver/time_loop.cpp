@@ -79,6 +79,7 @@ RunPosition Checkpointer::position(long n, long last_written, const GeneralizedA
   anchor_fields(pos, st, store);
   count_fields(pos, st, store);
   history_fields(pos, estimator.history(), store);
+  if (accumulated_) pos.accumulated = accumulated_();
   return pos;
 }
 

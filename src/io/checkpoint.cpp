@@ -118,6 +118,11 @@ void write_checkpoint_data(io_detail::H5Calls& h5, const Subdomain& sub, hid_t f
   write_attribute(h5, f, "history_count", p.history_count);
   write_attribute(h5, f, "history_h1", p.history_h1);
   write_attribute(h5, f, "history_h2", p.history_h2);
+  // The accumulated sensors' running sums (app/sensor_integrals.hpp): a few scalars, the same on
+  // every rank, so attributes (checksummed with the metadata).
+  write_attribute(h5, f, "accumulated_count", static_cast<long long>(p.accumulated.size()));
+  for (size_t i = 0; i < p.accumulated.size(); ++i)
+    write_attribute(h5, f, ("accumulated_" + std::to_string(i)).c_str(), p.accumulated[i]);
   write_attribute(h5, f, "csv_rows", p.results.csv_rows);
   write_attribute(h5, f, "output_steps", p.results.steps);
   write_attribute(h5, f, "output_parts", p.results.parts);
@@ -279,6 +284,20 @@ Checkpoint read_checkpoint(const Subdomain& sub, const std::string& path, const 
        !std::isfinite(p.h_auxiliary) || !std::isfinite(p.history_h1) || !std::isfinite(p.history_h2)))
     err = path + ": the checkpoint's step-controller attributes are out of range (the file is corrupted)";
   if (!p.controller) p.history_count = 0;
+  // The accumulated sensors (absent from checkpoints written before they were kept: none). The
+  // count is bounded before anything is allocated (a flipped byte must not ask for 10^12 values).
+  if (long long count = 0; err.empty() && read_attribute(f, "accumulated_count", count)) {
+    if (count < 0 || count > 1000000)
+      err = path + ": the checkpoint's attribute 'accumulated_count' is out of range (the file is corrupted)";
+    for (long long i = 0; err.empty() && i < count; ++i) {
+      double value = 0.0;
+      const std::string key = "accumulated_" + std::to_string(i);
+      if (!(read_attribute(f, key.c_str(), value) && std::isfinite(value)))
+        err = path + ": the checkpoint's attribute '" + key + "' is missing, unreadable or out of range (the file is incomplete or corrupted)";
+      else
+        p.accumulated.push_back(value);
+    }
+  }
 
   // The model must be this scene's: counts first, then the first node, joint or element that differs.
   const Model& g = sub.global_model();

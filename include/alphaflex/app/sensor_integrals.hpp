@@ -16,6 +16,11 @@ class SensorIntegrals {
   bool empty() const { return which_.empty(); }
   /// Replaces the work sensors' powers in `values` (scene order) at time t by their integrals.
   void integrate(double t, std::vector<double>& values);
+  /// What a restart needs to go on as if uninterrupted (kept in the checkpoint, RunPosition::
+  /// accumulated): [t, the integrals, the last powers]; empty if there is nothing to integrate.
+  std::vector<double> state() const;
+  /// Continues from `state()` of a checkpoint; false if it is not of these sensors (another count).
+  bool restore(const std::vector<double>& state);
 
  private:
   std::vector<size_t> which_;

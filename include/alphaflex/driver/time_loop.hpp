@@ -51,6 +51,9 @@ class Checkpointer {
   bool active() const { return writer_ != nullptr; }
   const std::string& path() const { return path_; }
   double last_wall() const { return last_; }
+  /// State kept beside the mechanical state that the loop does not know (the accumulated
+  /// sensors: RunPosition::accumulated), asked for at every checkpoint and commit.
+  void set_accumulated(std::function<std::vector<double>()> accumulated) { accumulated_ = std::move(accumulated); }
 
  private:
   const Subdomain& sub_;
@@ -60,6 +63,7 @@ class Checkpointer {
   double h_;
   int keep_;
   double last_;
+  std::function<std::vector<double>()> accumulated_;
 };
 
 struct TimeLoopSettings {

@@ -45,6 +45,9 @@ struct RunPosition {
   double history_h1 = 0.0, history_h2 = 0.0;
   Eigen::VectorXd history_m1, history_m2;
   ResultsPosition results;       ///< committed sensor rows, output steps and parts
+  /// The accumulated sensors' state (`work`: app/sensor_integrals.hpp), the same on every rank;
+  /// empty if the scene has none.
+  std::vector<double> accumulated;
 };
 
 /// The checkpoints a run wrote: how many, the size of the last, the time they took, the last's path
