@@ -55,7 +55,7 @@ EndFor
 k = 0;
 For j In {0:1}
   For i In {0:1}
-    cl = newcl; Curve Loop(cl) = {a[i + 2 * j], b[i + 1 + 3 * j], -a[i + 2 * (j + 1)], -b[i + 3 * j]};
+    cl = newll; Curve Loop(cl) = {a[i + 2 * j], b[i + 1 + 3 * j], -a[i + 2 * (j + 1)], -b[i + 3 * j]};
     sf[k] = news; Surface(sf[k]) = {cl};
     k += 1;
   EndFor
