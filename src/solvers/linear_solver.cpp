@@ -200,6 +200,20 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+/// The MUMPS factor matrix of `pc` in `F`, nullptr when the options chose another solver.
+PetscErrorCode mumps_factor(PC pc, Mat* F) {
+  PetscFunctionBeginUser;
+  *F = nullptr;
+  MatSolverType type = nullptr;
+  PetscBool is_mumps = PETSC_FALSE;
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
+  if (is_mumps) PetscCall(PCFactorGetMatrix(pc, F));
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
 PetscErrorCode LinearSolver::set_low_rank(PC pc) {
   PetscFunctionBeginUser;
   if (low_rank_ <= 0.0 || low_rank_set_) PetscFunctionReturn(0);
@@ -210,13 +224,9 @@ PetscErrorCode LinearSolver::set_low_rank(PC pc) {
   // Options given on the command line (-mat_mumps_icntl_35, -mat_mumps_cntl_7) still win: PETSc
   // reads them into the factor at the analysis.
   PetscCall(PCFactorSetUpMatSolverType(pc));
-  MatSolverType type = nullptr;
-  PetscBool is_mumps = PETSC_FALSE;
-  PetscCall(PCFactorGetMatSolverType(pc, &type));
-  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
-  if (is_mumps) {
-    Mat F = nullptr;
-    PetscCall(PCFactorGetMatrix(pc, &F));
+  Mat F = nullptr;
+  PetscCall(mumps_factor(pc, &F));
+  if (F) {
     PetscCall(MatMumpsSetIcntl(F, 35, 2));
     PetscCall(MatMumpsSetCntl(F, 7, low_rank_));
   }
@@ -228,28 +238,18 @@ PetscErrorCode LinearSolver::set_determinant(PC pc) {
   PetscFunctionBeginUser;
   if (!determinant_) PetscFunctionReturn(0);
   PetscCall(PCFactorSetUpMatSolverType(pc));
-  MatSolverType type = nullptr;
-  PetscBool is_mumps = PETSC_FALSE;
-  PetscCall(PCFactorGetMatSolverType(pc, &type));
-  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
-  if (is_mumps) {
-    Mat F = nullptr;
-    PetscCall(PCFactorGetMatrix(pc, &F));
-    PetscCall(MatMumpsSetIcntl(F, 33, 1));  // determinant during the factorization (ICNTL(33))
-  }
+  Mat F = nullptr;
+  PetscCall(mumps_factor(pc, &F));
+  if (F) PetscCall(MatMumpsSetIcntl(F, 33, 1));  // determinant during the factorization (ICNTL(33))
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode LinearSolver::read_determinant(PC pc) {
   PetscFunctionBeginUser;
   if (!determinant_) PetscFunctionReturn(0);
-  MatSolverType type = nullptr;
-  PetscBool is_mumps = PETSC_FALSE;
-  PetscCall(PCFactorGetMatSolverType(pc, &type));
-  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
-  if (!is_mumps) PetscFunctionReturn(0);
-  Mat F;
-  PetscCall(PCFactorGetMatrix(pc, &F));
+  Mat F = nullptr;
+  PetscCall(mumps_factor(pc, &F));
+  if (!F) PetscFunctionReturn(0);
   // det A = RINFOG(12) · 2^INFOG(34) (real case; RINFOG is global: the same on every rank).
   PetscReal mantissa = 0.0;
   PetscCall(MatMumpsGetRinfog(F, 12, &mantissa));
