@@ -159,7 +159,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
                      std::to_string(integrals.state().size() / 2) +
                      " accumulated sensors (`work`; it holds " + std::to_string(ck.position.accumulated.size() / 2) +
                      "): it is of a scene with other sensors; run from t = 0");
-  auto record = [&](const MechanicalState& st, bool fields) {
+  auto record = [&](const MechanicalState& st, bool fields, double field_time = std::numeric_limits<double>::quiet_NaN()) {
     const bool last = !dynamic || st.t >= rs.t_end - 1e-12 * std::max(1.0, std::fabs(rs.t_end));
     const bool row = sensor_rows.due(st.t, last);
     if (row || last || opt.keep_history || !integrals.empty()) {
@@ -175,7 +175,12 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     const double t0 = MPI_Wtime();
     if (writer) {
       if (row) writer->write_sensors(st.t, values);
-      if (fields) writer->write_fields(st);
+      if (fields && std::isnan(field_time)) writer->write_fields(st);
+      if (fields && !std::isnan(field_time)) {
+        MechanicalState at = st;  // the fields' time is another path parameter (arc length: the step)
+        at.t = field_time;
+        writer->write_fields(at);
+      }
     }
     integrator.times().output += MPI_Wtime() - t0;
   };
@@ -224,20 +229,33 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     // pre-loaded equilibrium a dynamic run starts from.
     const bool is_static = rs.analysis == Analysis::Static;
     QuasiStatic qs(system, solver, rs.statics);
+    // Path following through limit points (integrators/arc_length.hpp), a static analysis only.
+    const bool arc = is_static && rs.statics.method == StaticOptions::Method::ArcLength;
+    std::unique_ptr<ArcLength> path;
+    if (arc) path = std::make_unique<ArcLength>(system, solver, rs.statics);
+    std::vector<std::vector<double>> step_sensors;  // per converged point (arc length: critical points' sensors)
     ProgressReporter progress(opt.verbose && rank == 0, rs.progress_interval, 0.0, rs.load_factor, rs.statics.steps, stderr,
                               "load factor", "");
     long load_steps = 0;
     auto at_load = [&](const MechanicalState& st, double lf) {
       MechanicalState c = st;
       c.t = lf;  // the CSV's first column is the load factor in a static analysis
-      record(c, true);
-      if (lf > 0.0) progress.update(++load_steps, lf, -1);
+      // Along an arc-length path the load factor goes up and down; ParaView orders the steps of
+      // NAME.xdmf by their time, so there the time of step k is k.
+      record(c, true, arc ? static_cast<double>(step_sensors.size()) : std::numeric_limits<double>::quiet_NaN());
+      if (arc) step_sensors.push_back(values);
+      if (arc ? step_sensors.size() > 1 : lf > 0.0) progress.update(++load_steps, lf, -1);
     };
     if (is_static) at_load(s, 0.0);
     StaticReport rep;
     try {
-      rep = qs.solve(s, is_static ? std::function<void(const MechanicalState&, double)>(at_load)
-                                  : std::function<void(const MechanicalState&, double)>());
+      if (arc) {
+        sum.path = path->solve(s, at_load);
+        rep = sum.path;
+      } else {
+        rep = qs.solve(s, is_static ? std::function<void(const MechanicalState&, double)>(at_load)
+                                    : std::function<void(const MechanicalState&, double)>());
+      }
     } catch (const SolverError& e) {
       if (writer) writer->finish();
       // A body nothing holds (no joint, no stiffness) has no equilibrium: bad input, named (the
@@ -258,9 +276,12 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     sum.static_cuts = rep.cuts;
     sum.newton_total += rep.iterations;
     sum.newton_max = std::max(sum.newton_max, rep.max_iterations);
-    integrator.times().assembly += qs.times().assembly;
-    integrator.times().factorization += qs.times().factorization;
-    integrator.times().solve += qs.times().solve;
+    const PhaseTimes& st = arc ? path->times() : qs.times();
+    integrator.times().assembly += st.assembly;
+    integrator.times().factorization += st.factorization;
+    integrator.times().solve += st.solve;
+    sum.arc_length = arc;
+    for (const CriticalPoint& cp : sum.path.critical_points) sum.critical_sensors.push_back(step_sensors.at(static_cast<size_t>(cp.step)));
     if (is_static) {
       sum.steps = rep.load_steps;
       return finish(s);
@@ -382,7 +403,19 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
      << "  unknowns            " << s.unknowns << " (" << s.coordinates << " coordinates, " << s.multipliers
      << " multipliers)\n"
      << (scene.settings.analysis == Analysis::Static ? "  load steps          " : "  steps               ") << s.steps;
-  if (scene.settings.analysis == Analysis::Static)
+  if (s.arc_length) {
+    os << " (static, arc length: load factor 0 to " << s.path.load_factor << ", ended by " << s.path.stop << "; "
+       << s.static_cuts << " arc-length cuts, arc length " << s.path.min_arc << " to " << s.path.max_arc << ", "
+       << s.path.line_searches << " line searches)\n";
+    for (size_t k = 0; k < s.path.critical_points.size(); ++k) {
+      const CriticalPoint& cp = s.path.critical_points[k];
+      os << "  " << cp.kind_name() << " at load factor " << cp.load_factor << " (near step " << cp.step << ", between "
+         << cp.lower << " and " << cp.upper << ")";
+      for (size_t i = 0; i < s.sensor_names.size() && i < s.critical_sensors[k].size(); ++i)
+        os << (i == 0 ? ": " : ", ") << s.sensor_names[i] << " = " << s.critical_sensors[k][i];
+      os << "\n";
+    }
+  } else if (scene.settings.analysis == Analysis::Static)
     os << " (static, load factor 0 to " << scene.settings.load_factor << ", " << s.static_cuts << " step cuts)\n";
   else if (scene.settings.tolerance_rtol > 0.0 || scene.settings.tolerance_atol > 0.0)
     os << " accepted, " << s.rejected_steps << " rejected, " << s.step_cuts << " Newton failures (adaptive: rtol "

@@ -57,6 +57,24 @@ std::string summary_json(const Scene& scene, const RunSummary& s) {
   if (is_static) {
     j["load_factor"] = rs.load_factor;
     j["static_cuts"] = s.static_cuts;
+    if (s.arc_length) {
+      // Path following (solver.static.method: arc_length): where it ended and its critical points.
+      json points = json::array();
+      for (size_t k = 0; k < s.path.critical_points.size(); ++k) {
+        const CriticalPoint& cp = s.path.critical_points[k];
+        json sensors = json::object();
+        for (size_t i = 0; i < s.sensor_names.size() && i < s.critical_sensors[k].size(); ++i)
+          sensors[s.sensor_names[i]] = s.critical_sensors[k][i];
+        points.push_back({{"kind", cp.kind == CriticalPoint::Kind::Bifurcation ? "bifurcation" : "limit"},
+                          {"extremum", cp.kind == CriticalPoint::Kind::LimitMaximum ? "maximum"
+                                       : cp.kind == CriticalPoint::Kind::LimitMinimum ? "minimum" : ""},
+                          {"load_factor", cp.load_factor}, {"step", cp.step}, {"between", {cp.lower, cp.upper}},
+                          {"sensors", sensors}});
+      }
+      j["arc_length"] = {{"final_load_factor", s.path.load_factor}, {"ended_by", s.path.stop},
+                         {"min_arc_length", s.path.min_arc}, {"max_arc_length", s.path.max_arc},
+                         {"line_searches", s.path.line_searches}, {"critical_points", points}};
+    }
   } else {
     j["h"] = rs.h;
     j["t_end"] = rs.t_end;

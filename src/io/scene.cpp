@@ -104,6 +104,23 @@ const Schema& static_schema() {
   static const Schema s{"solver.static", {
       {"steps", KeyType::Integer, "–", "10", "initial number of equal load steps", Range::closed(1, 1000000)},
       {"max_cuts", KeyType::Integer, "–", "12", "halvings of one load step allowed in a row after Newton failures", Range::closed(0, 50)},
+      {"method", KeyType::Choice, "–", "`load_control`",
+       "`load_control` (load factor stepped from 0 to `load.factor`; stops at a limit point) or `arc_length` (path following through limit points, `solver.static.arc_length`; `analysis: static` only)",
+       {}, "", "", {"load_control", "arc_length"}},
+      {"arc_length", KeyType::Map, "–", "all defaults", "path following by arc length (`solver.static.arc_length`), with `method: arc_length`"},
+  }};
+  return s;
+}
+
+const Schema& arc_length_schema() {
+  static const Schema s{"solver.static.arc_length", {
+      {"initial", KeyType::Number, "– (load factor)", "0.1", "arc length of the first step; arc lengths are in load-factor units (coordinates measured against the linear response to the loads at load factor 1: on the linear part of a path a step of arc length Δℓ raises the load factor by Δℓ)", Range::positive(), "arc length"},
+      {"min", KeyType::Number, "– (load factor)", "1e-5", "smallest arc length: a step that fails at this length stops the run (exit 3)", Range::positive(), "arc length"},
+      {"max", KeyType::Number, "– (load factor)", "1", "largest arc length", Range::positive(), "arc length"},
+      {"target_iterations", KeyType::Integer, "–", "5", "Newton iterations per step the arc length is adapted to: Δℓ ← Δℓ·√(target/iterations)", Range::closed(1, 100)},
+      {"max_load_factor", KeyType::Number, "–", "`load.factor`", "the path ends when |load factor| reaches this (the last step lands on it at fixed load)", Range::positive(), "load factor"},
+      {"max_steps", KeyType::Integer, "–", "200", "the path ends after this many steps", Range::closed(1, 10000000)},
+      {"line_search", KeyType::Flag, "–", "on", "scale a Newton correction that overshoots (Crisfield 1983: |δxᵀr(x + δx)| > 0.8|δxᵀr(x)|) by regula falsi, η ∈ [0.1, 1]"},
   }};
   return s;
 }
@@ -167,6 +184,26 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
     const Section st(rd, s.node("static"), "solver.static", static_schema());
     rs.statics.steps = st.integer("steps", rs.statics.steps);
     rs.statics.max_cuts = st.integer("max_cuts", rs.statics.max_cuts);
+    if (st.has("method") && st.choice("method") == 1) {
+      rs.statics.method = StaticOptions::Method::ArcLength;
+      if (!(s.has("analysis") && s.choice("analysis") == 1))
+        rd.fail(st.node("method"), "solver.static.method", "arc_length needs solver.analysis: static (initial_static steps the load)");
+    }
+    if (st.has("arc_length")) {
+      if (rs.statics.method != StaticOptions::Method::ArcLength)
+        rd.fail(st.node("arc_length"), "solver.static.arc_length", "only with solver.static.method: arc_length");
+      const Section al(rd, st.node("arc_length"), "solver.static.arc_length", arc_length_schema());
+      ArcLengthOptions& a = rs.statics.arc_length;
+      a.initial = al.number("initial", a.initial);
+      a.min = al.number("min", a.min);
+      a.max = al.number("max", a.max);
+      a.target_iterations = al.integer("target_iterations", a.target_iterations);
+      a.max_load_factor = al.number("max_load_factor", 0.0);  // 0: load.factor (read later)
+      a.max_steps = al.integer("max_steps", a.max_steps);
+      a.line_search = al.flag("line_search", a.line_search);
+      if (!(a.min <= a.initial && a.initial <= a.max))
+        rd.fail(st.node("arc_length"), "solver.static.arc_length", "expected min ≤ initial ≤ max");
+    }
   }
   enum { GeneralizedAlpha, Hht, Newmark };
   const int scheme = s.choice("scheme", GeneralizedAlpha);
@@ -279,7 +316,7 @@ void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
 namespace scene_detail {
 
 std::vector<const Schema*> section_schemas() {
-  std::vector<const Schema*> v{&top_schema(), &load_schema(), &solver_schema(), &tolerance_schema(), &static_schema(), &newton_schema(), &linear_schema(), &output_schema()};
+  std::vector<const Schema*> v{&top_schema(), &load_schema(), &solver_schema(), &tolerance_schema(), &static_schema(), &arc_length_schema(), &newton_schema(), &linear_schema(), &output_schema()};
   v.push_back(&mesh_schema());
   v.push_back(&modes_schema());
   v.push_back(&campbell_schema());

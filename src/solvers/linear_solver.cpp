@@ -106,6 +106,12 @@ PetscErrorCode LinearSolver::factor_dense(Mat A) {
   }
   lu_.compute(dense_);
   ++numeric_;
+  if (determinant_) {
+    // sign(det) = sign(det P) · Π sign(u_ii): the product itself over/underflows for n ~ 100.
+    int sign = static_cast<int>(lu_.permutationP().determinant());
+    for (Eigen::Index i = 0; i < n; ++i) sign *= lu_.matrixLU()(i, i) < 0.0 ? -1 : 1;
+    det_sign_ = sign;
+  }
   // A zero (or non-finite) pivot after partial pivoting: the matrix is singular, as MUMPS' -10.
   const auto d = lu_.matrixLU().diagonal();
   bool singular = false;
@@ -123,6 +129,7 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   PetscFunctionBeginUser;
   failure_.clear();
   workspace_failure_ = false;
+  det_sign_ = 0;
   if (backend_ == Backend::Undecided) PetscCall(choose_backend(A));
   if (backend_ == Backend::Dense) {
     if (last_state_ == -1) ++symbolic_;  // the pattern, once (as for MUMPS)
@@ -139,6 +146,7 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   PetscCall(KSPSetOperators(ksp_, A, A));
   PetscCall(set_low_rank(pc));
   for (int attempt = 0;; ++attempt) {
+    PetscCall(set_determinant(pc));
     PetscCall(KSPSetUp(ksp_));
     // Count factorizations only when the options left the PC a factorization.
     PetscBool factors = PETSC_FALSE;
@@ -149,6 +157,7 @@ PetscErrorCode LinearSolver::factor(Mat A) {
     PetscCall(PCGetFailedReason(pc, &pcreason));
     if (pcreason == PC_NOERROR) {
       if (factors) PetscCall(read_statistics(pc));
+      if (factors) PetscCall(read_determinant(pc));
       break;
     }
     // Workspace too small: the same factorization again with ICNTL(14) doubled. INFOG is global,
@@ -191,6 +200,20 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+/// The MUMPS factor matrix of `pc` in `F`, nullptr when the options chose another solver.
+PetscErrorCode mumps_factor(PC pc, Mat* F) {
+  PetscFunctionBeginUser;
+  *F = nullptr;
+  MatSolverType type = nullptr;
+  PetscBool is_mumps = PETSC_FALSE;
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
+  if (is_mumps) PetscCall(PCFactorGetMatrix(pc, F));
+  PetscFunctionReturn(0);
+}
+}  // namespace
+
 PetscErrorCode LinearSolver::set_low_rank(PC pc) {
   PetscFunctionBeginUser;
   if (low_rank_ <= 0.0 || low_rank_set_) PetscFunctionReturn(0);
@@ -201,17 +224,36 @@ PetscErrorCode LinearSolver::set_low_rank(PC pc) {
   // Options given on the command line (-mat_mumps_icntl_35, -mat_mumps_cntl_7) still win: PETSc
   // reads them into the factor at the analysis.
   PetscCall(PCFactorSetUpMatSolverType(pc));
-  MatSolverType type = nullptr;
-  PetscBool is_mumps = PETSC_FALSE;
-  PetscCall(PCFactorGetMatSolverType(pc, &type));
-  if (type) PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &is_mumps));
-  if (is_mumps) {
-    Mat F = nullptr;
-    PetscCall(PCFactorGetMatrix(pc, &F));
+  Mat F = nullptr;
+  PetscCall(mumps_factor(pc, &F));
+  if (F) {
     PetscCall(MatMumpsSetIcntl(F, 35, 2));
     PetscCall(MatMumpsSetCntl(F, 7, low_rank_));
   }
   low_rank_set_ = true;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearSolver::set_determinant(PC pc) {
+  PetscFunctionBeginUser;
+  if (!determinant_) PetscFunctionReturn(0);
+  PetscCall(PCFactorSetUpMatSolverType(pc));
+  Mat F = nullptr;
+  PetscCall(mumps_factor(pc, &F));
+  if (F) PetscCall(MatMumpsSetIcntl(F, 33, 1));  // determinant during the factorization (ICNTL(33))
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LinearSolver::read_determinant(PC pc) {
+  PetscFunctionBeginUser;
+  if (!determinant_) PetscFunctionReturn(0);
+  Mat F = nullptr;
+  PetscCall(mumps_factor(pc, &F));
+  if (!F) PetscFunctionReturn(0);
+  // det A = RINFOG(12) · 2^INFOG(34) (real case; RINFOG is global: the same on every rank).
+  PetscReal mantissa = 0.0;
+  PetscCall(MatMumpsGetRinfog(F, 12, &mantissa));
+  det_sign_ = mantissa > 0.0 ? 1 : (mantissa < 0.0 ? -1 : 0);
   PetscFunctionReturn(0);
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "alphaflex/integrators/arc_length.hpp"
 #include "alphaflex/io/checkpoint.hpp"
 #include "alphaflex/io/scene.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
@@ -38,6 +39,12 @@ struct RunOptions {
 struct RunSummary : CheckpointStats {
   int steps = 0;              ///< time steps (load steps in a static analysis)
   int static_steps = 0, static_cuts = 0;  ///< load steps and step cuts of the quasi-static solve
+  /// Arc-length statics (solver.static.method: arc_length, integrators/arc_length.hpp): the path's
+  /// end, its limit points and bifurcation candidates, each with the sensors (scene order) at the
+  /// converged step nearest to it.
+  bool arc_length = false;
+  ArcLengthReport path;
+  std::vector<std::vector<double>> critical_sensors;
   int step_cuts = 0;          ///< halvings of h after failed dynamic steps (solver.step_cuts)
   double h_min = 0.0, h_max = 0.0;  ///< smallest and largest step taken (s; steps shortened to land on t_end or an output time aside)
   long long rejected_steps = 0;     ///< steps rejected by the local error test (solver.tolerance) and retried

@@ -14,7 +14,23 @@
 
 namespace alphaflex {
 
+/// Path following by arc length (integrators/arc_length.hpp; `solver.static.arc_length`). Arc
+/// lengths are in load-factor units: the increment's coordinates are measured against the linear
+/// response u₀ = K₀⁻¹f to the loads at load factor 1 at the start, so that a step of arc length
+/// Δℓ on the initial, linear part of a path is a load step Δλ = Δℓ.
+struct ArcLengthOptions {
+  double initial = 0.1;          ///< first arc length
+  double min = 1e-5;             ///< smallest arc length before giving up
+  double max = 1.0;              ///< largest arc length
+  int target_iterations = 5;     ///< Newton iterations per step the arc length is adapted to
+  double max_load_factor = 0.0;  ///< stop when |λ| reaches it (λ lands on it); 0: |target|
+  int max_steps = 200;           ///< stop after this many steps
+  bool line_search = true;       ///< Crisfield's (1983) line search on the corrections
+};
+
 struct StaticOptions {
+  enum class Method { LoadControl, ArcLength } method = Method::LoadControl;
+  ArcLengthOptions arc_length;
   int steps = 10;          ///< initial number of equal load steps from 0 to the target
   int max_cuts = 12;       ///< halvings of one load step before giving up (2⁻¹² of the first step)
   double target = 1.0;     ///< final load factor

@@ -72,6 +72,14 @@ class LinearSolver {
   int numeric_count() const { return numeric_; }
   /// MUMPS' statistics of the last successful factorization.
   const FactorStatistics& statistics() const { return stats_; }
+  /// Ask every following factorization for the sign of det A (path following: a sign change of
+  /// the tangent's determinant marks a limit or bifurcation point). MUMPS computes it during the
+  /// factorization with ICNTL(33) = 1 (RINFOG(12)·2^INFOG(34), users' guide 5.5); the dense path
+  /// takes it from the LU factors.
+  void compute_determinant(bool on) { determinant_ = on; }
+  /// Sign of det A of the last factorization (+1, −1), 0 when not asked for or not available
+  /// (the options replaced MUMPS by another solver).
+  int determinant_sign() const { return det_sign_; }
 
  private:
   PetscErrorCode describe_failure(const char* phase);
@@ -79,6 +87,8 @@ class LinearSolver {
   PetscErrorCode choose_backend(Mat A);
   PetscErrorCode factor_dense(Mat A);
   PetscErrorCode set_low_rank(PC pc);
+  PetscErrorCode set_determinant(PC pc);
+  PetscErrorCode read_determinant(PC pc);
 
   enum class Backend { Undecided, Dense, Krylov } backend_ = Backend::Undecided;
   MPI_Comm comm_;
@@ -95,6 +105,8 @@ class LinearSolver {
   int workspace_retries_ = 0, icntl14_ = 0;
   double low_rank_ = 0.0;
   bool low_rank_set_ = false;  ///< ICNTL(35)/CNTL(7) given to the current MUMPS factor
+  bool determinant_ = false;
+  int det_sign_ = 0;
 };
 
 }  // namespace alphaflex
