@@ -45,6 +45,13 @@ void apply_tangent_operator(const Model& m, const std::vector<int>& nodes, const
   }
 }
 
+/// The message of a std::bad_alloc on this rank of `comm` (its size is not known).
+std::string out_of_memory_here(MPI_Comm comm, const std::string& what) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return out_of_memory_message(what, 0.0, rank);
+}
+
 }  // namespace
 
 SaddlePointSystem::SaddlePointSystem(const Subdomain& subdomain)
@@ -87,20 +94,21 @@ SaddlePointSystem::SaddlePointSystem(const Subdomain& subdomain)
     error = e.what();
     kind = FailureKind::Memory;
   } catch (const std::bad_alloc&) {
-    int rank = 0;
-    MPI_Comm_rank(comm_, &rank);
-    error = out_of_memory_message(what.str(), 0.0, rank);
+    error = out_of_memory_here(comm_, what.str());
     kind = FailureKind::Memory;
   } catch (const std::exception& e) {
     error = e.what();
   }
   check_petsc(raise_if_any_rank_failed(error, kind), "the agreement on the preallocation");
+  // The matrix's CSR arrays (a value and a column index per entry allocated, MatGetInfo), the row
+  // and column indices MUMPS receives (two 32-bit integers per entry: PETSc's triples, whose values
+  // are the matrix's own) and the assembly's entry maps (one PetscInt per block entry).
   MatInfo info;
   check_petsc(MatGetInfo(S_, MAT_LOCAL, &info), "MatGetInfo");
-  double maps = 0.0;
+  double bytes = info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt) + 8.0);
   for (const auto* list : {&elem_pos_, &con_qq_pos_, &con_ql_pos_, &con_lq_pos_, &con_ll_pos_})
-    for (const auto& v : *list) maps += static_cast<double>(v.size()) * sizeof(PetscInt);
-  matrix_mb_ = (info.memory + maps) / 1048576.0;
+    for (const auto& v : *list) bytes += static_cast<double>(v.size()) * sizeof(PetscInt);
+  matrix_mb_ = bytes / 1048576.0;
 }
 
 double SaddlePointSystem::preallocation_bytes() const {
@@ -304,9 +312,7 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
     local_error = e.what();
     kind = FailureKind::Configuration;
   } catch (const std::bad_alloc&) {
-    int rank = 0;
-    MPI_Comm_rank(comm_, &rank);
-    local_error = out_of_memory_message("assembling the iteration matrix and residual", 0.0, rank);
+    local_error = out_of_memory_here(comm_, "assembling the iteration matrix and residual");
     kind = FailureKind::Memory;
   } catch (const std::exception& e) {
     local_error = e.what();

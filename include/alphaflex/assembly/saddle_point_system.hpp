@@ -74,8 +74,8 @@ class SaddlePointSystem {
   /// owned and ghost unknowns), in local order.
   PetscErrorCode to_model(Vec v, ModelVector& out);
 
-  /// Memory of the iteration matrix on this rank (MatGetInfo: its CSR arrays) plus the assembly's
-  /// entry maps, in MB: the matrix part of the run's memory estimate.
+  /// Memory of the iteration matrix on this rank (its CSR arrays, MatGetInfo), of the indices MUMPS
+  /// receives and of the assembly's entry maps, in MB: the matrix part of the run's memory estimate.
   double matrix_megabytes() const { return matrix_mb_; }
 
   const Subdomain& subdomain() const { return sub_; }
