@@ -321,12 +321,15 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   if (o_a_) PetscCall(MatSeqAIJRestoreArray(offdiag_, &o_a_));
   d_a_ = o_a_ = nullptr;
   PetscCall(raise_if_any_rank_failed(local_error, kind));
+  // The rows other ranks' elements fill arrive here (PETSc's stash): an allocation PETSc cannot
+  // make is a MemoryError, without its trace.
+  const QuietPetscErrors quiet;
   if (matrix) {
-    PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
+    quiet.check(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY), "assembling the iteration matrix (rows from other ranks)");
+    quiet.check(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY), "assembling the iteration matrix (rows from other ranks)");
   }
-  PetscCall(VecAssemblyBegin(r_));
-  PetscCall(VecAssemblyEnd(r_));
+  quiet.check(VecAssemblyBegin(r_), "assembling the residual (rows from other ranks)");
+  quiet.check(VecAssemblyEnd(r_), "assembling the residual (rows from other ranks)");
   PetscFunctionReturn(0);
 }
 

@@ -72,6 +72,8 @@ PetscErrorCode LinearSolver::describe_failure(const char* phase) {
     PetscInt info1 = 0, info2 = 0;
     PetscCall(MatMumpsGetInfog(F, 1, &info1));
     PetscCall(MatMumpsGetInfog(F, 2, &info2));
+    // An allocation the system refused (the solve's workspace, −13): memory exhaustion, on every rank.
+    if (refused_allocation_unit(info1) > 0.0) throw_memory_failure(F, info1, phase);
     os << "; MUMPS INFOG(1)=" << info1 << " INFOG(2)=" << info2;
     if (info1 == -10) os << " (numerically singular matrix)";
     if (workspace_too_small(info1))
@@ -186,7 +188,7 @@ PetscErrorCode LinearSolver::factor(Mat A) {
       PetscCall(MatMumpsGetInfog(F, 1, &info1));
       PetscCall(read_analysis_estimate(F));
       // INFOG is global: every rank throws the same error.
-      if (refused_allocation_unit(info1) > 0.0) throw_memory_failure(F, info1);
+      if (refused_allocation_unit(info1) > 0.0) throw_memory_failure(F, info1, info1 == -13 ? "factorization" : "analysis");
     }
     if (!is_mumps || !workspace_too_small(info1) || attempt >= 5) {
       workspace_failure_ = is_mumps && workspace_too_small(info1);
@@ -230,14 +232,14 @@ PetscErrorCode LinearSolver::read_analysis_estimate(Mat F) {
   PetscFunctionReturn(0);
 }
 
-void LinearSolver::throw_memory_failure(Mat F, PetscInt info1) {
+void LinearSolver::throw_memory_failure(Mat F, PetscInt info1, const char* phase) {
   PetscInt info2 = 0, n = 0;
   check_petsc(MatMumpsGetInfog(F, 2, &info2), "MatMumpsGetInfog");
   check_petsc(MatGetSize(F, &n, nullptr), "MatGetSize");
   // INFO(2) < 0: millions of units.
   const double units = info2 < 0 ? -1e6 * static_cast<double>(info2) : static_cast<double>(info2);
   std::ostringstream what;
-  what << (info1 == -13 ? "MUMPS factored" : "MUMPS analysed") << " the iteration matrix (" << n
+  what << "MUMPS ran its " << phase << " of the iteration matrix (" << n
        << " unknowns; MUMPS INFOG(1) = " << info1 << ", INFOG(2) = " << info2;
   if (estimate_.largest_mb > 0.0)
     what << "; its analysis estimated " << estimate_.largest_mb << " MB per rank for the factorization";

@@ -93,7 +93,8 @@ class LinearSolver {
   PetscErrorCode factor_dense(Mat A);
   PetscErrorCode set_low_rank(PC pc);
   PetscErrorCode read_analysis_estimate(Mat F);
-  [[noreturn]] void throw_memory_failure(Mat F, PetscInt info1);
+  /// MemoryError for MUMPS' INFOG(1) = −5, −7, −13 in `phase` (analysis, factorization, solve).
+  [[noreturn]] void throw_memory_failure(Mat F, PetscInt info1, const char* phase);
 
   enum class Backend { Undecided, Dense, Krylov } backend_ = Backend::Undecided;
   MPI_Comm comm_;
