@@ -29,6 +29,7 @@
 #include "alphaflex/app/summary_json.hpp"
 #include "alphaflex/app/stop_signals.hpp"
 #include "alphaflex/core/error.hpp"
+#include "alphaflex/core/memory.hpp"
 #include "alphaflex/core/mpi_singleton.hpp"
 #include "alphaflex/io/schema.hpp"
 #include "alphaflex/io/scene_modes.hpp"
@@ -382,6 +383,10 @@ int main(int argc, char** argv) {
     } else {
       run_command(cl, rank, size, exit_comm, exit_timeout, message);
     }
+  } catch (const std::bad_alloc&) {
+    // Memory exhaustion outside a run's body (reading the scene, meshing): exit 3 with what to do.
+    code = 3;
+    message = alphaflex::out_of_memory_message("running `alphaflex " + cl.command + " " + cl.scene + "`", 0.0, rank);
   } catch (const std::exception& e) {
     // The code of the error's type (exit_agreement.hpp: one table for main and run_simulation).
     code = alphaflex::exit_code_of(e);

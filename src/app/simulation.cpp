@@ -21,6 +21,7 @@
 #include "alphaflex/core/blas_library.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/fault_injection.hpp"
+#include "alphaflex/core/memory.hpp"
 #include "alphaflex/driver/step_controller.hpp"
 #include "alphaflex/driver/time_loop.hpp"
 #include "alphaflex/integrators/quasi_static.hpp"
@@ -94,14 +95,18 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
 
   // This rank's part of the model (METIS partition, owned and ghost nodes): the state below is
   // local to it.
+  o.phase = "partitioning the model (this rank's subdomain)";
   o.sub = std::make_unique<Subdomain>(model, comm);
   Subdomain& sub = *o.sub;
   // Tests of error handling: a bad value that one rank only finds (it ends the job, not a hang).
   if (fault_injected("input")) throw InputError(scene.file + ": injected fault (-af_inject_fault input): a bad value found on this rank only");
-  o.system = std::make_unique<SaddlePointSystem>(sub);
-  SaddlePointSystem& system = *o.system;
+  // The solver first: it makes the BLAS take its workspace while the most room is left.
   o.solver = std::make_unique<LinearSolver>(comm, rs.low_rank);
   LinearSolver& solver = *o.solver;
+  o.phase = "preallocating the iteration matrix";
+  const double base_mb = memory_status().resident_mb;  // before the matrix: the memory estimate's base
+  o.system = std::make_unique<SaddlePointSystem>(sub);
+  SaddlePointSystem& system = *o.system;
   o.integrator = std::make_unique<GeneralizedAlpha>(system, solver, rs.parameters, rs.integrator);
   GeneralizedAlpha& integrator = *o.integrator;
 
@@ -184,8 +189,18 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     }
     integrator.times().output += MPI_Wtime() - t0;
   };
+  // The memory estimate once MUMPS has analysed the matrix (issue 24): printed before the steps of
+  // large models, with a warning if it exceeds what the ranks may have.
+  auto estimate = [&](bool print) {
+    if (sum.memory_estimate.known() || solver.numeric_count() == 0) return;
+    sum.memory_estimate = estimate_memory(comm, base_mb, system, solver);
+    if (print && opt.verbose && rank == 0 && sum.unknowns >= kMemoryEstimateUnknowns)
+      std::cout << "  " << sum.memory_estimate.line() << std::endl;
+    if (!sum.memory_estimate.warning.empty()) sum.warnings.push_back(sum.memory_estimate.warning);
+  };
   // Closes the output and fills the summary (end of a static or a dynamic run).
   auto finish = [&](const MechanicalState& final_state) {
+    estimate(false);
     if (writer) {
       writer->finish();
       sum.csv = writer->csv_path();
@@ -301,6 +316,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
         sum.warnings.push_back("solver.consistent_start is off and the initial positions violate the joints by up to " +
                                std::to_string(viol) + ": the first steps' multipliers will be far off");
     }
+    o.phase = "computing the consistent start at t = 0 (the first factorizations)";
     try {
       sum.projection = integrator.initialize(s);
     } catch (const InputError& e) {
@@ -313,6 +329,8 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     }
   }
   if (opt.stop_after_start) return sum;
+  estimate(true);
+  o.phase = "taking the time steps";
 
   const double h = rs.h;
   // The step policy (driver/step_controller.hpp): fixed, cut-back on Newton failures, or adaptive.
@@ -462,6 +480,7 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   os << "  memory              peak " << std::setprecision(4) << s.peak_memory_mb << " MB resident in all ranks ("
      << s.peak_memory_max_mb << " MB largest rank)";
   if (s.scene_memory_mb >= 0.0) os << ", " << s.scene_memory_mb << " MB of it per rank for the scene's whole model";
+  if (s.memory_estimate.known()) os << "; estimated " << s.memory_estimate.total_mb << " MB per rank";
   os << "\n";
   if (!s.restarted_from.empty()) os << "  restarted from      " << s.restarted_from << " (t = " << s.restart_time << " s)\n";
   if (s.checkpoints > 0)

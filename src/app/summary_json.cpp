@@ -107,6 +107,11 @@ std::string summary_json(const Scene& scene, const RunSummary& s) {
   j["blas"] = s.blas;
   j["memory_mb"] = {{"peak_all_ranks", s.peak_memory_mb}, {"peak_largest_rank", s.peak_memory_max_mb}};
   if (s.scene_memory_mb >= 0.0) j["memory_mb"]["scene_per_rank"] = s.scene_memory_mb;
+  // The estimate made after MUMPS' analysis (app/memory_estimate.hpp), per rank (largest rank).
+  const MemoryEstimate& me = s.memory_estimate;
+  if (me.known())
+    j["memory_mb"]["estimate_per_rank"] = {{"total", me.total_mb}, {"before_matrix", me.base_mb}, {"matrix", me.matrix_mb},
+                                           {"factorization", me.factorization_mb}};
   if (!s.restarted_from.empty()) j["restart"] = {{"from", s.restarted_from}, {"time", s.restart_time}};
   j["checkpoints"] = {{"written", s.checkpoints}, {"bytes_each", s.checkpoint_bytes}, {"last", s.checkpoint}};
   const PhaseTimes& t = s.times;

@@ -1,6 +1,9 @@
 #include "alphaflex/assembly/saddle_point_system.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <new>
+#include <sstream>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -8,6 +11,7 @@
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/core/fault_injection.hpp"
+#include "alphaflex/core/memory.hpp"
 #include "alphaflex/core/petsc_error.hpp"
 
 namespace alphaflex {
@@ -41,6 +45,13 @@ void apply_tangent_operator(const Model& m, const std::vector<int>& nodes, const
   }
 }
 
+/// The message of a std::bad_alloc on this rank of `comm` (its size is not known).
+std::string out_of_memory_here(MPI_Comm comm, const std::string& what) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return out_of_memory_message(what, 0.0, rank);
+}
+
 }  // namespace
 
 SaddlePointSystem::SaddlePointSystem(const Subdomain& subdomain)
@@ -64,7 +75,55 @@ SaddlePointSystem::SaddlePointSystem(const Subdomain& subdomain)
     con_rows_.push_back(rows);
     con_mults_.push_back(mults);
   }
-  check_petsc(preallocate(), "the preallocation of the iteration matrix");
+  // Memory exhaustion (issue 24, defect 3). PETSc's hash table of the pattern (MATPREALLOCATOR)
+  // cannot report a failed allocation in an optimized build (khash's resize returns −1 and
+  // PetscHashAssert is compiled out): it drops the entry and tries to grow again at the next one,
+  // which under an address-space limit never ends. So the room is checked first, on every rank
+  // together; a PETSc allocation that fails later is reported without PETSc's trace, and the ranks
+  // agree on the outcome before anything else collective.
+  std::ostringstream what;
+  what << "preallocating the iteration matrix (" << sub_.dof_map().global_size() << " unknowns, "
+       << sub_.dof_map().local_size() << " on this rank)";
+  require_address_space(comm_, preallocation_bytes(), what.str());
+  std::string error;
+  FailureKind kind = FailureKind::Solver;
+  try {
+    const QuietPetscErrors quiet;
+    quiet.check(preallocate(), what.str().c_str());
+  } catch (const MemoryError& e) {
+    error = e.what();
+    kind = FailureKind::Memory;
+  } catch (const std::bad_alloc&) {
+    error = out_of_memory_here(comm_, what.str());
+    kind = FailureKind::Memory;
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  check_petsc(raise_if_any_rank_failed(error, kind), "the agreement on the preallocation");
+  // The matrix's CSR arrays (a value and a column index per entry allocated, MatGetInfo), the row
+  // and column indices MUMPS receives (two 32-bit integers per entry: PETSc's triples, whose values
+  // are the matrix's own) and the assembly's entry maps (one PetscInt per block entry).
+  MatInfo info;
+  check_petsc(MatGetInfo(S_, MAT_LOCAL, &info), "MatGetInfo");
+  double bytes = info.nz_allocated * (sizeof(PetscScalar) + sizeof(PetscInt) + 8.0);
+  for (const auto* list : {&elem_pos_, &con_qq_pos_, &con_ql_pos_, &con_lq_pos_, &con_ll_pos_})
+    for (const auto& v : *list) bytes += static_cast<double>(v.size()) * sizeof(PetscInt);
+  matrix_mb_ = bytes / 1048576.0;
+}
+
+double SaddlePointSystem::preallocation_bytes() const {
+  // Every block entry counted once per block (an upper bound of the distinct entries: blocks of
+  // neighbouring elements share their node's diagonal blocks).
+  double entries = static_cast<double>(sub_.num_owned_dofs());
+  for (const auto& rows : elem_rows_) entries += static_cast<double>(rows.size() * rows.size());
+  for (size_t c = 0; c < con_rows_.size(); ++c)
+    entries += static_cast<double>(con_rows_[c].size() * (con_rows_[c].size() + 2 * con_mults_[c].size()) + con_mults_[c].size());
+  // khash (PETSc's PetscHSetIJ): buckets a power of 2 at most 77 % full, a key of two PetscInt,
+  // old and new tables both alive while it grows; then the AIJ matrix (a value and a column index
+  // per entry) and the entry maps (one PetscInt per block entry).
+  const double buckets = std::exp2(std::ceil(std::log2(std::max(entries / 0.77, 16.0))));
+  const double hash = 1.5 * buckets * (2.0 * sizeof(PetscInt) + 0.25);
+  return hash + entries * (sizeof(PetscScalar) + 2.0 * sizeof(PetscInt));
 }
 
 SaddlePointSystem::~SaddlePointSystem() {
@@ -241,7 +300,7 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   // An element or joint may throw on the rank that owns it (e.g. a spring of zero length). The
   // other ranks would then wait in the assembly below: agree on failure first, then all throw.
   std::string local_error;
-  bool configuration = false;  // a ConfigurationError: keeps its type on every rank
+  FailureKind kind = FailureKind::Solver;  // a ConfigurationError or MemoryError keeps its type on every rank
   try {
     // Tests of error handling: one rank adds nothing, which leaves rows of the matrix zero.
     if (matrix) {
@@ -251,24 +310,30 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
     if (!(matrix && fault_injected("singular"))) PetscCall(add_local_contributions(s, c, rows, matrix));
   } catch (const ConfigurationError& e) {
     local_error = e.what();
-    configuration = true;
+    kind = FailureKind::Configuration;
+  } catch (const std::bad_alloc&) {
+    local_error = out_of_memory_here(comm_, "assembling the iteration matrix and residual");
+    kind = FailureKind::Memory;
   } catch (const std::exception& e) {
     local_error = e.what();
   }
   if (d_a_) PetscCall(MatSeqAIJRestoreArray(diag_, &d_a_));
   if (o_a_) PetscCall(MatSeqAIJRestoreArray(offdiag_, &o_a_));
   d_a_ = o_a_ = nullptr;
-  PetscCall(raise_if_any_rank_failed(local_error, configuration));
+  PetscCall(raise_if_any_rank_failed(local_error, kind));
+  // The rows other ranks' elements fill arrive here (PETSc's stash): an allocation PETSc cannot
+  // make is a MemoryError, without its trace.
+  const QuietPetscErrors quiet;
   if (matrix) {
-    PetscCall(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY));
+    quiet.check(MatAssemblyBegin(S_, MAT_FINAL_ASSEMBLY), "assembling the iteration matrix (rows from other ranks)");
+    quiet.check(MatAssemblyEnd(S_, MAT_FINAL_ASSEMBLY), "assembling the iteration matrix (rows from other ranks)");
   }
-  PetscCall(VecAssemblyBegin(r_));
-  PetscCall(VecAssemblyEnd(r_));
+  quiet.check(VecAssemblyBegin(r_), "assembling the residual (rows from other ranks)");
+  quiet.check(VecAssemblyEnd(r_), "assembling the residual (rows from other ranks)");
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& local_error, bool configuration) {
+PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& local_error, FailureKind kind) {
   PetscFunctionBeginUser;
   int rank = 0, size = 1;
   MPI_Comm_rank(comm_, &rank);
@@ -281,9 +346,10 @@ PetscErrorCode SaddlePointSystem::raise_if_any_rank_failed(const std::string& lo
   std::string msg = local_error;
   msg.resize(static_cast<size_t>(len));
   PetscCallMPI(MPI_Bcast(msg.data(), len, MPI_CHAR, first, comm_));
-  int kind = configuration ? 1 : 0;
-  PetscCallMPI(MPI_Bcast(&kind, 1, MPI_INT, first, comm_));
-  if (kind) throw ConfigurationError(msg);
+  int k = static_cast<int>(kind);
+  PetscCallMPI(MPI_Bcast(&k, 1, MPI_INT, first, comm_));
+  if (k == static_cast<int>(FailureKind::Configuration)) throw ConfigurationError(msg);
+  if (k == static_cast<int>(FailureKind::Memory)) throw MemoryError(msg);
   throw SolverError(msg);
 }
 

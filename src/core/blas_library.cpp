@@ -5,6 +5,10 @@
 #include <stdlib.h>
 
 #include <string>
+#include <vector>
+
+#include "alphaflex/core/memory.hpp"
+
 
 namespace alphaflex {
 
@@ -50,6 +54,25 @@ std::string describe(const BlasLibrary& b) {
   }
   if (!b.lapack.empty() && b.lapack != b.blas) s += "; LAPACK " + b.lapack;
   return s;
+}
+
+void reserve_blas_workspace(MPI_Comm comm) {
+  static bool reserved = false;  // once per process (OpenBLAS keeps its workspace)
+  int done = reserved ? 1 : 0, all = 0;
+  MPI_Allreduce(&done, &all, 1, MPI_INT, MPI_MIN, comm);
+  if (all) return;
+  require_address_space(comm, kBlasWorkspaceBytes, "the BLAS library (OpenBLAS) took its workspace for MUMPS' dense kernels");
+  // 128×128: above OpenBLAS' small-matrix path, so the call goes through its workspace.
+  // Looked up as MUMPS' calls resolve it (the executable does not link the BLAS itself).
+  using gemm = void (*)(const char*, const char*, const int*, const int*, const int*, const double*, const double*,
+                        const int*, const double*, const int*, const double*, double*, const int*);
+  void* f = dlsym(RTLD_DEFAULT, "dgemm_");
+  if (!f) return;  // no BLAS in the process: nothing to reserve
+  const int n = 128;
+  const double one = 1.0, zero = 0.0;
+  std::vector<double> a(static_cast<size_t>(n * n), 0.0), c(static_cast<size_t>(n * n), 0.0);
+  reinterpret_cast<gemm>(f)("N", "N", &n, &n, &n, &one, a.data(), &n, a.data(), &n, &zero, c.data(), &n);
+  reserved = true;
 }
 
 }  // namespace alphaflex

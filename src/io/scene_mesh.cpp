@@ -151,6 +151,17 @@ void read_mesh_and_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& root, 
         rd.fail(mn["file"], "mesh.file",
                 "node " + std::to_string(mesh.node_tags[k]) + " is not in the x-y plane (z = " +
                     std::to_string(mesh.points[k].z()) + "); a planar scene needs a planar mesh (or use dimension: 3)");
+  // Physical group names become node, group and result names: the scene's safe set (issue 24).
+  auto check_name = [&](const std::string& name, const char* kind) {
+    const std::string why = input::name_problem(name);
+    if (!why.empty())
+      rd.fail(mn["file"], "mesh.file", "mesh '" + mesh.file + "': the name of physical " + kind + " group '" +
+                                           input::escaped_name(name) + "': " + why);
+  };
+  for (const auto& b : mesh.line_blocks) check_name(b.name, "curve");
+  for (const auto& b : mesh.surface_blocks) check_name(b.name, "surface");
+  for (const auto& p : mesh.named_points) check_name(p.first, "point");
+  for (const auto& p : mesh.point_groups) check_name(p.first, "point");
   sb.mesh_file = mesh.file;
   sb.blocks.node_of.assign(mesh.points.size(), -1);
   for (const auto& [name, id] : mesh.named_points) sb.blocks.point_name[id] = name;

@@ -201,19 +201,37 @@ std::string Reader::text(const YAML::Node& n, const std::string& key) const {
   return n.Scalar();
 }
 
+std::string name_problem(const std::string& name) {
+  const bool printable = std::all_of(name.begin(), name.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
+  if (!name.empty() && name.size() <= 100 && printable && name.front() != ' ' && name.back() != ' ') return "";
+  return "expected a name of 1 to 100 printable ASCII characters (letters, digits, punctuation, inner spaces; no control "
+         "characters, no leading or trailing space), got " + std::to_string(name.size()) + " characters" +
+         (printable ? std::string() : " with a control or non-ASCII character");
+}
+
+std::string escaped_name(const std::string& name) {
+  std::string out;
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u <= 0x7e) {
+      out += c;
+    } else {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 15];
+    }
+  }
+  return out.size() > 60 ? out.substr(0, 57) + "..." : out;
+}
+
 std::string Reader::item_name(const YAML::Node& item, const char* list, size_t i, const char* not_a_map,
                               std::string& path) const {
   path = std::string(list) + "[" + std::to_string(i) + "]";
   if (!item.IsMap()) fail(item, path, not_a_map);
   const std::string name = text(need(item, "name", path), path + ".name");
-  // Names go to messages, the CSV header and the results: printable ASCII only (a newline, a tab, a
-  // NUL byte or 300 characters broke them; issue 24), docs/input.md "Names".
-  const bool printable = std::all_of(name.begin(), name.end(), [](char c) { return c >= 0x20 && c <= 0x7e; });
-  if (name.empty() || name.size() > 100 || !printable || name.front() == ' ' || name.back() == ' ')
-    fail(item["name"], path + ".name",
-         "expected a name of 1 to 100 printable ASCII characters (letters, digits, punctuation, inner spaces; no control "
-         "characters, no leading or trailing space), got " + std::to_string(name.size()) + " characters" +
-             (printable ? std::string() : " with a control or non-ASCII character"));
+  const std::string why = name_problem(name);
+  if (!why.empty()) fail(item["name"], path + ".name", why);
   path = std::string(list) + "[" + name + "]";
   return name;
 }

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/core/memory.hpp"
 #include "alphaflex/mesh/gmsh_reader.hpp"
 
 namespace alphaflex {
@@ -34,6 +36,11 @@ void* load_module() {
     module = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!module) failure = "cannot load the gmsh reader module: " + std::string(dlerror());
   });
+  // The loader could not map the module's segments (gmsh's ~70 libraries): an address-space limit
+  // (ulimit -v) too small for them, i.e. memory exhaustion (exit 3), not a bug.
+  if (!module && (failure.find("failed to map segment") != std::string::npos ||
+                  failure.find("Cannot allocate memory") != std::string::npos))
+    throw MemoryError(out_of_memory_message("loading the gmsh module to read the mesh (" + failure + ")", 0.0));
   if (!module) throw std::runtime_error(failure);
   return module;
 }

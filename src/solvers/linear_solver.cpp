@@ -6,6 +6,9 @@
 #include <sstream>
 #include <string>
 
+#include "alphaflex/core/blas_library.hpp"
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/core/memory.hpp"
 #include "alphaflex/core/petsc_error.hpp"
 
 namespace alphaflex {
@@ -20,6 +23,17 @@ bool workspace_too_small(PetscInt info1) {
   }
 }
 
+/// MUMPS' INFOG(1) codes of an allocation the operating system refused (MUMPS users' guide 5.5,
+/// "error diagnostics"), with the bytes of one unit of INFO(2): −5 real and −7 integer workspace of
+/// the analysis, −13 an ALLOCATE of the factorization or solve (scalar entries). 0: not one of them.
+double refused_allocation_unit(PetscInt info1) {
+  switch (info1) {
+    case -5: case -13: return sizeof(PetscScalar);
+    case -7: return sizeof(PetscInt);
+    default: return 0.0;
+  }
+}
+
 }  // namespace
 
 
@@ -31,6 +45,9 @@ LinearSolver::LinearSolver(MPI_Comm comm, double low_rank) : comm_(comm), low_ra
   check_petsc(PCSetType(pc, PCLU), "PCSetType");
   check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
   check_petsc(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+  // OpenBLAS (MUMPS' dense kernels) takes its workspace now, while there is room: it would wait
+  // forever for it at the first factorization under an address-space limit.
+  reserve_blas_workspace(comm);
 }
 
 LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
@@ -55,6 +72,8 @@ PetscErrorCode LinearSolver::describe_failure(const char* phase) {
     PetscInt info1 = 0, info2 = 0;
     PetscCall(MatMumpsGetInfog(F, 1, &info1));
     PetscCall(MatMumpsGetInfog(F, 2, &info2));
+    // An allocation the system refused (the solve's workspace, −13): memory exhaustion, on every rank.
+    if (refused_allocation_unit(info1) > 0.0) throw_memory_failure(F, info1, phase);
     os << "; MUMPS INFOG(1)=" << info1 << " INFOG(2)=" << info2;
     if (info1 == -10) os << " (numerically singular matrix)";
     if (workspace_too_small(info1))
@@ -147,7 +166,12 @@ PetscErrorCode LinearSolver::factor(Mat A) {
   PetscCall(set_low_rank(pc));
   for (int attempt = 0;; ++attempt) {
     PetscCall(set_determinant(pc));
-    PetscCall(KSPSetUp(ksp_));
+    {
+      // PETSc's own allocations (the matrix handed to MUMPS as triples, the factor's structures):
+      // an out-of-memory is a MemoryError naming the phase, without PETSc's trace.
+      const QuietPetscErrors quiet;
+      quiet.check(KSPSetUp(ksp_), "handing the iteration matrix to MUMPS for its analysis and factorization");
+    }
     // Count factorizations only when the options left the PC a factorization.
     PetscBool factors = PETSC_FALSE;
     PetscCall(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &factors, PCLU, PCCHOLESKY, ""));
@@ -171,6 +195,9 @@ PetscErrorCode LinearSolver::factor(Mat A) {
     if (is_mumps) {
       PetscCall(PCFactorGetMatrix(pc, &F));
       PetscCall(MatMumpsGetInfog(F, 1, &info1));
+      PetscCall(read_analysis_estimate(F));
+      // INFOG is global: every rank throws the same error.
+      if (refused_allocation_unit(info1) > 0.0) throw_memory_failure(F, info1, info1 == -13 ? "factorization" : "analysis");
     }
     if (!is_mumps || !workspace_too_small(info1) || attempt >= 5) {
       workspace_failure_ = is_mumps && workspace_too_small(info1);
@@ -213,6 +240,36 @@ PetscErrorCode mumps_factor(PC pc, Mat* F) {
   PetscFunctionReturn(0);
 }
 }  // namespace
+PetscErrorCode LinearSolver::read_analysis_estimate(Mat F) {
+  PetscFunctionBeginUser;
+  // INFOG(16), INFOG(17): MB MUMPS' analysis estimates for the in-core factorization, on the
+  // largest rank and summed (with ICNTL(14)'s margin; users' guide 5.5, section 6.2).
+  PetscInt largest = 0, sum = 0;
+  PetscCall(MatMumpsGetInfog(F, 16, &largest));
+  PetscCall(MatMumpsGetInfog(F, 17, &sum));
+  if (largest > 0) {
+    estimate_.largest_mb = static_cast<double>(largest);
+    estimate_.sum_mb = static_cast<double>(sum);
+  }
+  PetscFunctionReturn(0);
+}
+
+void LinearSolver::throw_memory_failure(Mat F, PetscInt info1, const char* phase) {
+  PetscInt info2 = 0, n = 0;
+  check_petsc(MatMumpsGetInfog(F, 2, &info2), "MatMumpsGetInfog");
+  check_petsc(MatGetSize(F, &n, nullptr), "MatGetSize");
+  // INFO(2) < 0: millions of units.
+  const double units = info2 < 0 ? -1e6 * static_cast<double>(info2) : static_cast<double>(info2);
+  std::ostringstream what;
+  what << "MUMPS ran its " << phase << " of the iteration matrix (" << n
+       << " unknowns; MUMPS INFOG(1) = " << info1 << ", INFOG(2) = " << info2;
+  if (estimate_.largest_mb > 0.0)
+    what << "; its analysis estimated " << estimate_.largest_mb << " MB per rank for the factorization";
+  what << ")";
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  throw MemoryError(out_of_memory_message(what.str(), units * refused_allocation_unit(info1), rank));
+}
 
 PetscErrorCode LinearSolver::set_low_rank(PC pc) {
   PetscFunctionBeginUser;
@@ -267,6 +324,7 @@ PetscErrorCode LinearSolver::read_statistics(PC pc) {
   if (!is_mumps) PetscFunctionReturn(0);
   Mat F;
   PetscCall(PCFactorGetMatrix(pc, &F));
+  PetscCall(read_analysis_estimate(F));
   PetscInt entries = 0, mem_max = 0, mem_sum = 0;
   PetscReal flops = 0.0;
   PetscCall(MatMumpsGetRinfog(F, 3, &flops));

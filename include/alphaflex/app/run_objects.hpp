@@ -9,6 +9,8 @@
 #include <string>
 
 #include "alphaflex/app/exit_agreement.hpp"
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/core/memory.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/integrators/generalized_alpha.hpp"
 #include "alphaflex/io/checkpoint.hpp"
@@ -33,6 +35,8 @@ struct CommittedState {
 
 /// Members go in reverse order of destruction.
 struct RunObjects {
+  /// What the run is doing (for a std::bad_alloc, which says nothing: "out of memory while …").
+  const char* phase = "setting up the run";
   CommittedState committed;
   std::unique_ptr<Subdomain> sub;
   std::unique_ptr<SaddlePointSystem> system;
@@ -47,7 +51,15 @@ template <class Body>
 auto run_with_objects(MPI_Comm exit_comm, double exit_timeout, Body body) -> decltype(body(std::declval<RunObjects&>())) {
   RunObjects objects;
   try {
-    return body(objects);
+    try {
+      return body(objects);
+    } catch (const std::bad_alloc&) {
+      // An allocation of alphaflex's own that the system refused: a MemoryError (exit 3) saying
+      // what was being done, not an internal error.
+      int rank = 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      throw MemoryError(out_of_memory_message(objects.phase, 0.0, rank));
+    }
   } catch (const std::exception& e) {
     fail_together(exit_comm, exit_code_of(e), e.what(), exit_timeout);
     throw;

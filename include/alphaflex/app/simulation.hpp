@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "alphaflex/integrators/arc_length.hpp"
+#include "alphaflex/app/memory_estimate.hpp"
 #include "alphaflex/io/checkpoint.hpp"
 #include "alphaflex/io/scene.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
@@ -75,6 +76,8 @@ struct RunSummary : CheckpointStats {
   /// Resident memory that reading the scene (and its mesh) and building its whole model took on
   /// the largest rank: the part every rank holds whatever their number (set by the command).
   double scene_memory_mb = -1.0;
+  /// The memory a rank needs, estimated after MUMPS' analysis (app/memory_estimate.hpp).
+  MemoryEstimate memory_estimate;
   std::string restarted_from;  ///< the checkpoint the run restarted from
   double restart_time = 0.0;
   std::string h5, xdmf, csv;

@@ -74,6 +74,10 @@ class SaddlePointSystem {
   /// owned and ghost unknowns), in local order.
   PetscErrorCode to_model(Vec v, ModelVector& out);
 
+  /// Memory of the iteration matrix on this rank (its CSR arrays, MatGetInfo), of the indices MUMPS
+  /// receives and of the assembly's entry maps, in MB: the matrix part of the run's memory estimate.
+  double matrix_megabytes() const { return matrix_mb_; }
+
   const Subdomain& subdomain() const { return sub_; }
   const DofMap& dof_map() const { return sub_.dof_map(); }
   /// The local model (this rank's subdomain).
@@ -91,12 +95,18 @@ class SaddlePointSystem {
                             const Value& value);
   PetscErrorCode add_local_contributions(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
                                          bool matrix);
-  PetscErrorCode raise_if_any_rank_failed(const std::string& local_error, bool configuration);
+  /// What a failure of one rank becomes on every rank: kind 0 SolverError, 1 ConfigurationError,
+  /// 2 MemoryError.
+  enum class FailureKind { Solver = 0, Configuration = 1, Memory = 2 };
+  PetscErrorCode raise_if_any_rank_failed(const std::string& local_error, FailureKind kind);
+  /// An upper bound of the memory the preallocation takes at its peak on this rank (bytes).
+  double preallocation_bytes() const;
 
   const Subdomain& sub_;
   const Model& model_;
   MPI_Comm comm_;
   Mat S_ = nullptr;
+  double matrix_mb_ = 0.0;
   Vec r_ = nullptr, x_ = nullptr, local_ = nullptr;
   VecScatter to_local_ = nullptr;
   // Cached per element / joint: local unknowns and their PETSc indices.

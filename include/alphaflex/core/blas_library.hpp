@@ -24,3 +24,19 @@ BlasLibrary loaded_blas();
 std::string describe(const BlasLibrary& blas);
 
 }  // namespace alphaflex
+
+#include <mpi.h>
+
+namespace alphaflex {
+
+/// Address space OpenBLAS maps for its workspace at the first level-3 call of a thread (its
+/// BUFFER_SIZE, 128 MiB on x86-64, measured: 131 MB of VmSize after one 128×128 dgemm) and 4 MiB.
+constexpr double kBlasWorkspaceBytes = 132.0 * 1048576.0;
+
+/// Collective over `comm`: makes the BLAS take its workspace now, at the start of a run, while there
+/// is room (one small dgemm). OpenBLAS 0.3.21 retries a failed workspace mapping forever: left to
+/// MUMPS' first factorization under an address-space limit (ulimit -v) the run would hang there. If
+/// the room is not there even now, every rank throws MemoryError (require_address_space).
+void reserve_blas_workspace(MPI_Comm comm);
+
+}  // namespace alphaflex

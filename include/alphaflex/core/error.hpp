@@ -35,6 +35,16 @@ class ConfigurationError : public SolverError {
   using SolverError::SolverError;
 };
 
+/// The operating system refused memory (an address-space limit such as `ulimit -v`, or no memory
+/// left): a failed PETSc allocation (PETSC_ERR_MEM), MUMPS' INFOG(1) = −13, a std::bad_alloc of
+/// alphaflex, or a check before an allocation that would not fit. A solver failure (exit code 3,
+/// as MUMPS' workspace failure): the input was good, the machine too small for it on these ranks.
+/// The message says what was being allocated, how much, and what to do.
+class MemoryError : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
 /// Not an error: the run stopped on request (a stop signal) after writing a checkpoint and its
 /// results; the message says how to restart. Exit code 5.
 class Interrupted : public std::runtime_error {

@@ -22,6 +22,15 @@
 
 namespace alphaflex::input {
 
+/// Why `name` cannot be an entity's name ("" if it can): names go to messages, the CSV header and
+/// the results, so 1 to 100 printable ASCII characters without a leading or trailing space (a
+/// newline, a tab, a NUL byte or 300 characters broke them; issue 24, docs/input.md "Names").
+/// Entity names in the scene and physical group names of meshes alike.
+std::string name_problem(const std::string& name);
+/// `name` with control and non-ASCII bytes as \xNN (for a message about a bad name).
+std::string escaped_name(const std::string& name);
+
+
 /// What a key holds; it fixes how Section reads it and the type column of the docs.
 enum class KeyType {
   Number,    ///< a number or an expression of `parameters`

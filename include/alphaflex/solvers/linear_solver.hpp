@@ -34,6 +34,13 @@ struct FactorStatistics {
   double low_rank_entries = 0.0;
 };
 
+/// MUMPS' estimate, from its analysis, of the memory its factorization takes (0 before an analysis or
+/// without MUMPS).
+struct FactorEstimate {
+  double largest_mb = 0.0;  ///< INFOG(16): MB on the rank that needs the most
+  double sum_mb = 0.0;      ///< INFOG(17): MB summed over the ranks
+};
+
 class LinearSolver {
  public:
   /// Unknowns up to which one rank factors densely unless -af_dense_lu says otherwise (measured:
@@ -80,6 +87,12 @@ class LinearSolver {
   /// Sign of det A of the last factorization (+1, −1), 0 when not asked for or not available
   /// (the options replaced MUMPS by another solver).
   int determinant_sign() const { return det_sign_; }
+  /// MUMPS' estimate of the factorization's memory from its last analysis (issue 24: the memory
+  /// estimate printed before large runs). Memory exhaustion — MUMPS' INFOG(1) = −5, −7 or −13 (an
+  /// allocation the system refused), or a PETSc allocation on the way to MUMPS — is thrown by
+  /// factor() as MemoryError on every rank (INFOG is global; a PETSc allocation failing on one
+  /// rank only ends the job through the ranks' exit agreement).
+  const FactorEstimate& estimate() const { return estimate_; }
 
  private:
   PetscErrorCode describe_failure(const char* phase);
@@ -89,6 +102,9 @@ class LinearSolver {
   PetscErrorCode set_low_rank(PC pc);
   PetscErrorCode set_determinant(PC pc);
   PetscErrorCode read_determinant(PC pc);
+  PetscErrorCode read_analysis_estimate(Mat F);
+  /// MemoryError for MUMPS' INFOG(1) = −5, −7, −13 in `phase` (analysis, factorization, solve).
+  [[noreturn]] void throw_memory_failure(Mat F, PetscInt info1, const char* phase);
 
   enum class Backend { Undecided, Dense, Krylov } backend_ = Backend::Undecided;
   MPI_Comm comm_;
@@ -101,6 +117,7 @@ class LinearSolver {
   int symbolic_ = 0, numeric_ = 0;
   PetscObjectState last_state_ = -1;
   FactorStatistics stats_;
+  FactorEstimate estimate_;
   bool workspace_failure_ = false;
   int workspace_retries_ = 0, icntl14_ = 0;
   double low_rank_ = 0.0;
