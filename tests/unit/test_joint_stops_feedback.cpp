@@ -13,7 +13,7 @@
 #include "alphaflex/elements/sensor_feedback.hpp"
 #include "alphaflex/joints/joint_coordinate.hpp"
 #include "alphaflex/model/model.hpp"
-#include "test_support.hpp"
+#include "test_scene_runs.hpp"
 
 using namespace alphaflex;
 using namespace alphaflex::testing;
@@ -22,15 +22,6 @@ namespace {
 
 double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
 Eigen::Vector3d random3(std::mt19937& rng) { return {uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}; }
-
-RunSummary run_text(const std::string& yaml, const std::string& label) {
-  Scene scene = read_scene_text(yaml, label);
-  RunOptions opt;
-  opt.write_results = false;
-  opt.verbose = false;
-  opt.keep_history = true;
-  return run_simulation(scene, opt, PETSC_COMM_WORLD);
-}
 
 /// q ∘ exp(d) on a node list of frames (7/6) and scalars (1/1).
 Eigen::VectorXd retract_nodes(const std::vector<bool>& frame, const Eigen::VectorXd& q, const Eigen::VectorXd& d) {
