@@ -9,6 +9,8 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "alphaflex/app/exit_agreement.hpp"
 #include "alphaflex/app/progress.hpp"
@@ -57,8 +59,14 @@ RunSummary run_body(RunObjects& objects, Scene& scene, const RunOptions& opt, MP
   const CommittedState& c = o.committed;
   std::ostringstream os;
   os << e.what() << "\n  The results up to t = " << c.state.t << " s (output steps: " << c.position.results.steps
-     << ", sensor rows: " << c.position.results.csv_rows << ") are complete and consistent in " << o.writer->csv_path();
-  if (c.position.results.parts > 0) os << ", " << o.writer->h5_path() << " and " << o.writer->xdmf_path();
+     << ", sensor rows: " << c.position.results.csv_rows << ") are complete and consistent in ";
+  // Only the files this run writes are named: with output.sensors off there is no CSV (its path is empty).
+  std::vector<std::string> kept;
+  if (!o.writer->csv_path().empty()) kept.push_back(o.writer->csv_path());
+  if (c.position.results.parts > 0) kept.insert(kept.end(), {o.writer->h5_path(), o.writer->xdmf_path()});
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    os << (i == 0 ? "" : i + 1 == kept.size() ? " and " : ", ") << kept[i];
+  if (kept.empty()) os << "(no result files: sensors and fields are off)";
   try {
     write_checkpoint(*o.sub, c.checkpoint, c.state, c.auxiliary, c.position, c.parameters, c.h, c.keep);
     os << "; a checkpoint of that state: " << c.checkpoint << ".\n  Once there is room, go on with: alphaflex run "
