@@ -79,11 +79,16 @@ struct StudyResult {
   std::map<std::string, std::map<std::string, SlopeFit>> slope_fits;
   std::vector<std::string> files;   ///< files written (rank 0)
   std::vector<std::string> warnings;
+  /// fidelity with study.tolerance: the printed recommendation, the label of the lightest
+  /// acceptable variant and of the first rung from which all are acceptable ("" if none)
+  std::string recommendation, recommended, acceptable_from;
 };
 
 /// Runs the study. Throws InputError for bad input (a setting's overrides, a reference without the
 /// study's final time, parameters that fail eq. 17/18/20 without `force: on`) and SolverError
-/// when the reference run fails; a failing study run is a result (status failed), not an error.
+/// when the reference run fails (fidelity: the reference variant, after the CSV is written); a
+/// failing study run is a result (status failed), not an error — in mode fidelity also a variant
+/// whose scene cannot be built.
 StudyResult run_study(const StudySpec& spec, const StudyOptions& options, MPI_Comm comm);
 
 }  // namespace alphaflex::study
