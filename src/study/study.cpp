@@ -307,6 +307,17 @@ class Study {
         if (v.label == spec_.reference_variant) {
           const Scene sc = scene_for(variant_setting(v), h, v.scene);
           reference_unknowns_ = sc.model->num_dofs() + sc.model->num_multipliers();
+          for (const auto& s : spec_.sensors) {
+            std::string names;
+            bool found = false;
+            for (const auto& sn : sc.model->sensors()) {
+              names += (names.empty() ? "" : ", ") + sn.name;
+              found = found || sn.name == s;
+            }
+            if (!found)
+              throw InputError(spec_.file + ": study.sensors: the reference variant's scene " + v.scene +
+                               " has no sensor named '" + s + "' (its sensors: " + names + ")");
+          }
         }
       return;
     }
@@ -1041,10 +1052,6 @@ class Study {
         if (all) sensors_.push_back(n);
       }
     }
-    if (ref.row.ok)
-      for (const auto& s : sensors_)
-        if (!std::count(ref.sensor_names.begin(), ref.sensor_names.end(), s))
-          throw InputError(refv.where + ": the reference variant's scene has no sensor named '" + s + "' (study.sensors)");
     res_.error_names = sensors_;
     res_.error_names.push_back("max");
     const bool relative = spec_.relative_errors;

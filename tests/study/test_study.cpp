@@ -412,5 +412,29 @@ TEST(StudyFidelityLadder, VariantsRunAndFailuresAreRows) {
   EXPECT_NE(r.recommendation.find("acceptable from 'rod 4 beams' on"), std::string::npos) << r.recommendation;
 }
 
+TEST(StudyFidelityLadder, FailedReferenceStopsAfterTheRowsAreWritten) {
+  // With the Newton failure as the reference no error can be measured: SolverError (exit 3), but
+  // the CSV with every row is written first.
+  const std::string csv = std::string(STUDY_TEST_OUTDIR) + "/fidelity_ladder/fidelity_ladder_study.csv";
+  std::filesystem::remove(csv);
+  try {
+    run("inputs/slider_crank_flexible.yaml", "tests/study/fidelity_ladder.yaml", {"reference_variant=newton fails"});
+    FAIL() << "no error";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("the reference variant 'newton fails' failed, so no error can be measured"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ifstream in(csv);
+  ASSERT_TRUE(in.good()) << csv;
+  int rows = 0;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("fidelity,", 0) == 0) ++rows;
+  EXPECT_EQ(rows, 5);
+  // A sensor the reference scene lacks is bad input, before any run.
+  EXPECT_THROW(run("inputs/slider_crank_flexible.yaml", "tests/study/fidelity_ladder.yaml", {"sensors=[theta1, nope]"}),
+               InputError);
+}
+
 }  // namespace
 }  // namespace alphaflex::study
