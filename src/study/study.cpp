@@ -966,6 +966,7 @@ class Study {
       if (rec.ok) o.energy = energy_rows(v.label, parts, rec.t, rec.energy);
     } catch (const InputError& e) {
       o.row.ok = false;
+      o.row.t_end = kNaN;
       o.row.failure = e.what();
     } catch (const SolverError& e) {
       o.row.ok = false;
@@ -1188,7 +1189,7 @@ class Study {
     for (const auto& r : res_.rows) {
       const bool ours = r.method == "alphaflex";
       f << mode_name(spec_.mode) << "," << r.method << "," << r.label << ",";
-      if (ours)
+      if (ours && !std::isnan(r.t_end))  // a variant that could not be built has no scheme (t_end NaN)
         f << r.params.scheme << "," << sig6(r.params.rho_infinity()) << "," << num(r.params.alpha_m) << ","
           << num(r.params.alpha_f) << "," << num(r.params.beta) << "," << num(r.params.gamma) << ","
           << (r.scaling ? "on" : "off");
