@@ -4,9 +4,10 @@
 1. The error estimate does not reach across a breakpoint. inputs/beam_impulse.yaml (a cantilever at
    rest struck by a 4 ms pulse at t = 0.1 s) up to the end of the pulse's rising half, t = 0.102 s:
    before the pulse nothing moves and h grows to ~0.05 s; the estimate's divided difference then took
-   its points from those long steps and passed the 2 ms step over the rising half at every tolerance
-   (error 1.5e-3 m at tol = 1e-5). With the history restarted at the breakpoint the step is rejected
-   and the error at 0.102 s follows the tolerance.
+   its points from those long steps and passed the 2 ms step over the rising half whole (measured to
+   t_end = 1 s: 1.5e-3 m in tip_y at 0.102 s at tol = 1e-3 and 1e-4 alike). With the history
+   restarted at the breakpoint the step is rejected and the error at 0.102 s follows the tolerance
+   (measured: 4.3e-6 m at tol = 1e-4, 4.1e-7 m at 1e-5; 24 and 61 steps over the rising half).
 2. The transient that settles: inputs/beam_impulse_damped.yaml (the same beam with material damping)
    to t = 0.3 s. The error at t_end follows the tolerance, and the steps after the transient are
    far larger than during the pulse. The reference is the Richardson extrapolation of fixed steps of
