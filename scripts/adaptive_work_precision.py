@@ -8,29 +8,48 @@ accepted and rejected steps, Newton iterations, and the run's own wall time from
 slope of log error against log tol (tolerance proportionality: 1) and, for a target error, the
 steps and time of each policy interpolated in log-log.
 
+CPU is the process CPU time of each run (user + system, from the operating system's accounting of
+the child process: it includes start-up, and is what a loaded machine does not inflate, unlike the
+wall time). `--reference-h H` computes the reference in the same run: the scene with fixed steps of
+H (a much finer step than any measured). `--doc NAME` writes the table and the figures at the target
+error between the markers `<!-- NAME: begin -->` and `<!-- NAME: end -->` of docs/performance_notes.md
+and of docs/performance.md (scripts/benchmark.py copies the notes under its tables).
+
+Example (the damped struck beam, issue 17's third target; ~3 min of CPU):
+  /usr/bin/python3 scripts/adaptive_work_precision.py --exe build/alphaflex --scene inputs/beam_impulse_damped.yaml \
+      --reference-h 6.25e-5 --sensor tip_y --absolute --target 1e-5 --repeat 1 --doc adaptive_struck_beam \
+      --tol 1e-4 1e-5 1e-6 --h 2e-3 1e-3 5e-4 2.5e-4 1.25e-4
+
 Example (Andrews, 1e-4 in beta):
   /usr/bin/python3 scripts/adaptive_work_precision.py --exe build/alphaflex --scene inputs/andrews.yaml \
       --reference tests/reference/andrews.csv --sensor beta --target 1e-4 \
       --tol 1e-3 3e-4 1e-4 3e-5 1e-5 1e-6 --h 1.2e-4 8e-5 5.6e-5 4e-5 2.8e-5 2e-5
 """
-import argparse, csv, math, os, re, subprocess, sys, tempfile
+import argparse, csv, math, os, re, resource, subprocess, sys, tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import benchmark as bm  # noqa: E402
 
 def run(exe, scene, sets, outdir, repeat):
-    best = None
+    best = best_cpu = None
     for _ in range(repeat):
         cmd = [exe, "run", scene, "-o", outdir, "--set", "output.hdf5=off"]
         for s in sets: cmd += ["--set", s]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         p = subprocess.run(cmd, capture_output=True, text=True)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
         if p.returncode != 0:
             sys.exit("failed: " + " ".join(cmd) + "\n" + p.stdout + p.stderr)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         wall = float(re.search(r"wall time\s+([0-9.]+) s", p.stdout).group(1))
         best = wall if best is None else min(best, wall)
+        best_cpu = cpu if best_cpu is None else min(best_cpu, cpu)
     m = re.search(r"steps\s+(\d+)( accepted, (\d+) rejected, (\d+) Newton failures)?", p.stdout)
     newton = int(re.search(r"Newton iterations\s+total (\d+)", p.stdout).group(1))
     name = re.search(r"sensors\s+(\S+\.csv)", p.stdout).group(1)
     with open(name) as f:
         rows = list(csv.reader(f))
-    return dict(steps=int(m.group(1)), rejected=int(m.group(3) or 0), newton=newton, wall=best,
+    return dict(steps=int(m.group(1)), rejected=int(m.group(3) or 0), newton=newton, wall=best, cpu=best_cpu,
                 header=rows[0], last=[float(x) for x in rows[-1]])
 
 def interp(xs, ys, target):
@@ -45,16 +64,26 @@ def interp(xs, ys, target):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--exe", required=True); ap.add_argument("--scene", required=True)
-    ap.add_argument("--reference", required=True); ap.add_argument("--sensor", required=True)
+    ap.add_argument("--reference", help="reference CSV (its last row)"); ap.add_argument("--sensor", required=True)
+    ap.add_argument("--reference-h", type=float, help="instead of --reference: a fixed-step run of this h, in the same run")
+    ap.add_argument("--doc", help="write the results between the markers <!-- DOC: begin/end --> of docs/performance*.md")
     ap.add_argument("--target", type=float, default=1e-4)
     ap.add_argument("--tol", type=float, nargs="+", default=[]); ap.add_argument("--h", type=float, nargs="+", default=[])
     ap.add_argument("--set", action="append", default=[]); ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--absolute", action="store_true", help="absolute instead of relative errors")
     a = ap.parse_args()
-    with open(a.reference) as f:
-        rows = list(csv.reader(f))
-    ref = float(rows[-1][rows[0].index(a.sensor)])
     out = tempfile.mkdtemp(prefix="awp_")
+    if a.reference_h:
+        r = run(a.exe, a.scene, list(a.set) + [f"solver.h={a.reference_h}"], os.path.join(out, "reference"), 1)
+        ref = r["last"][r["header"].index(a.sensor)]
+        ref_text = f"fixed h = {a.reference_h:g} s ({r['steps']} steps, this run): {a.sensor} = {ref:.10g}"
+    elif a.reference:
+        with open(a.reference) as f:
+            rows = list(csv.reader(f))
+        ref = float(rows[-1][rows[0].index(a.sensor)])
+        ref_text = a.reference
+    else:
+        sys.exit("--reference or --reference-h is needed")
     res = []
     for kind, values in (("tol", a.tol), ("h", a.h)):
         for v in values:
@@ -65,28 +94,38 @@ def main():
             r["error"] = abs(x - ref) / (1.0 if a.absolute else abs(ref))
             r["kind"], r["value"] = kind, v
             res.append(r)
-    print(f"| policy | tol or h | steps | rejected | Newton/step | wall (ms) | error in {a.sensor} |")
-    print("|---|---|---|---|---|---|---|")
+    lines = [f"| policy | tol or h | steps | rejected | Newton/step | wall (ms) | CPU (ms) | error in {a.sensor} |",
+             "|---|---|---|---|---|---|---|---|"]
     for r in res:
-        print(f"| {'adaptive' if r['kind'] == 'tol' else 'fixed'} | {r['value']:g} | {r['steps']} | {r['rejected']} | "
-              f"{r['newton'] / max(1, r['steps'] + r['rejected']):.2f} | {1e3 * r['wall']:.1f} | {r['error']:.3e} |")
+        lines.append(f"| {'adaptive' if r['kind'] == 'tol' else 'fixed'} | {r['value']:g} | {r['steps']} | {r['rejected']} | "
+                     f"{r['newton'] / max(1, r['steps'] + r['rejected']):.2f} | {1e3 * r['wall']:.1f} | {1e3 * r['cpu']:.1f} | "
+                     f"{r['error']:.3e} |")
+    lines += ["", f"Reference: {ref_text}; errors {'absolute' if a.absolute else 'relative'}, at t_end."]
     ad = [r for r in res if r["kind"] == "tol"]
     fx = [r for r in res if r["kind"] == "h"]
-    if len(ad) >= 2:
-        lx = [math.log(r["value"]) for r in ad]; ly = [math.log(r["error"]) for r in ad]
+    def slope(xs, ys):
+        lx = [math.log(x) for x in xs]; ly = [math.log(y) for y in ys]
         mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-        slope = sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sum((x - mx) ** 2 for x in lx)
+        return sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sum((x - mx) ** 2 for x in lx)
+    if len(ad) >= 2:
         ratios = [r["error"] / r["value"] for r in ad]
-        print(f"\nslope of log error vs log tol: {slope:.3f}; error/tol from {min(ratios):.3g} to {max(ratios):.3g}")
+        lines.append(f"Slope of log error against log tol: {slope([r['value'] for r in ad], [r['error'] for r in ad]):.2f}; "
+                     f"error/tol from {min(ratios):.3g} to {max(ratios):.3g}.")
+    if len(fx) >= 2:
+        lines.append(f"Slope of log error against log h (fixed): {slope([r['value'] for r in fx], [r['error'] for r in fx]):.2f}.")
     at = {}
     for name, rs in (("adaptive", ad), ("fixed", fx)):
         if len(rs) >= 2:
             e = [r["error"] for r in rs]
-            at[name] = (interp(e, [r['steps'] for r in rs], a.target), interp(e, [r['wall'] for r in rs], a.target))
-            print(f"{name}: at {a.sensor} error {a.target:g}: steps {at[name][0]:.0f}, wall {1e3 * at[name][1]:.1f} ms")
+            at[name] = (interp(e, [r['steps'] for r in rs], a.target), interp(e, [r['cpu'] for r in rs], a.target))
+            lines.append(f"At error {a.target:g} ({name}, interpolated in log-log): {at[name][0]:.0f} steps, "
+                         f"{1e3 * at[name][1]:.0f} ms CPU.")
     if len(at) == 2:
-        print(f"fixed / adaptive at error {a.target:g}: steps {at['fixed'][0] / at['adaptive'][0]:.2f}, "
-              f"wall {at['fixed'][1] / at['adaptive'][1]:.2f}")
+        lines.append(f"Fixed / adaptive at error {a.target:g}: steps {at['fixed'][0] / at['adaptive'][0]:.2f}, "
+                     f"CPU {at['fixed'][1] / at['adaptive'][1]:.2f}.")
+    print("\n".join(lines))
+    if a.doc:
+        bm.replace_between_markers(f"<!-- {a.doc}: begin -->", f"<!-- {a.doc}: end -->", "\n".join(lines))
 
 if __name__ == "__main__":
     main()

@@ -349,7 +349,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
   if (!integrals.empty()) checkpointer.set_accumulated([&integrals] { return integrals.state(); });
   TimeLoopSettings ls;
   ls.output_every = rs.output_every;
-  ErrorFilter filter(system, solver, rs.parameters, rs.integrator);
+  ErrorFilter filter(system, solver, integrator);
   if (rs.filtered_error_estimate) ls.filter = &filter;
   ls.checkpoint_steps = rs.checkpoint_steps;
   ls.checkpoint_wall = rs.checkpoint_wall;

@@ -4,19 +4,10 @@ namespace alphaflex {
 
 Eigen::VectorXd ErrorFilter::apply(const MechanicalState& s, const Eigen::VectorXd& e, double h, const Eigen::VectorXd& increment,
                                    int applications, PhaseTimes& times) {
-  // The coefficients of the step's residual and S_t (generalized_alpha.cpp, eq. 6 and the scaling);
-  // the loads cancel in the difference, the load factor is kept only so that the two residuals are
-  // those of the step.
-  AssemblyCoefficients c;
-  c.mass = p_.beta_prime(h);
-  c.damping = p_.gamma_prime(h);
-  c.stiffness = 1.0;
-  c.load_factor = load_factor_;
-  if (lin_.model().has_lie_group_nodes()) c.increment = &increment;
-  if (scaling_) {
-    c.row_scale = p_.beta * h * h;
-    c.multiplier_scale = 1.0 / (p_.beta * h * h);
-  }
+  // The coefficients of the step's residual and S_t (GeneralizedAlpha::step_coefficients); the loads
+  // cancel in the difference, the load factor is kept only so that the two residuals are those of
+  // the step.
+  const AssemblyCoefficients c = integrator_.step_coefficients(h, increment);
   lin_.times() = PhaseTimes();
   const ModelVector x0 = lin_.solve_with_last_factorization(s, c, ConstraintRows::Dynamic, nullptr);
   MechanicalState moved = s;

@@ -179,6 +179,13 @@ double Adaptive::landing_time(double t) const {
   return next;
 }
 
+bool Adaptive::at_breakpoint(double t) const {
+  // Within the round-off of the run's length, as landing_time decides that a step is past one.
+  const double tol = 1e-12 * t_end_;
+  const auto b = std::lower_bound(o_.breakpoints.begin(), o_.breakpoints.end(), t - tol);
+  return b != o_.breakpoints.end() && *b <= t + tol;
+}
+
 std::unique_ptr<StepController> make_step_controller(double h, double t_end, int step_cuts, const AdaptiveOptions& adaptive) {
   if (adaptive.enabled()) return std::make_unique<Adaptive>(h, t_end, adaptive);
   if (step_cuts > 0) return std::make_unique<CutBack>(h, t_end, step_cuts);

@@ -191,6 +191,12 @@ void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopC
   }
   while (!last) {
     const StepPlan p = controller_.plan(s.t);
+    // At a kink of a load or driver q⃛ jumps: the divided difference of the estimate must not take
+    // its points from both sides, or the steps before (long ones, when nothing moved) smear q⃛ over
+    // their length and a step across a sharp pulse passes (inputs/beam_impulse.yaml: a 2 ms step
+    // over the rising half of the 4 ms pulse was accepted at any tolerance, docs/performance.md).
+    // The history starts again as at t = 0, from the velocity reached (docs/theory/adaptive_steps.md §3).
+    if (controller_.estimates_error() && controller_.at_breakpoint(s.t) && s.t > 0.0) estimator_.start(s.v);
     if (retries) {
       saved = s;
       saved_a = integrator_.auxiliary();

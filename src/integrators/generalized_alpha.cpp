@@ -90,6 +90,21 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   return sub.max_abs(m.difference(q_in, s.q));
 }
 
+AssemblyCoefficients GeneralizedAlpha::step_coefficients(double h, const Eigen::VectorXd& increment) const {
+  AssemblyCoefficients c;
+  c.mass = p_.beta_prime(h);  // eq. (6)
+  c.damping = p_.gamma_prime(h);
+  c.stiffness = 1.0;
+  c.load_factor = opt_.load_factor;
+  // S_t = M β' + C γ' + K T(x) (Brüls, Cardona & Arnold 2012, eq. 48)
+  if (lin_.model().has_lie_group_nodes()) c.increment = &increment;
+  if (opt_.scaling) {
+    c.row_scale = p_.beta * h * h;
+    c.multiplier_scale = 1.0 / (p_.beta * h * h);
+  }
+  return c;
+}
+
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h) { return step(s, h, s.t + h); }
 
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h, double t_next) {
@@ -153,16 +168,7 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
   n1.v += h * gamma * a_pred;
   n1.qdd.setZero();
 
-  AssemblyCoefficients c;
-  c.mass = beta_p;
-  c.damping = gamma_p;
-  c.stiffness = 1.0;
-  c.load_factor = opt_.load_factor;
-  if (model.has_lie_group_nodes()) c.increment = &x;  // S_t = M β' + C γ' + K T(x) (eq. 48 there)
-  if (opt_.scaling) {
-    c.row_scale = beta * h * h;
-    c.multiplier_scale = 1.0 / (beta * h * h);
-  }
+  const AssemblyCoefficients c = step_coefficients(h, x);
 
   StepReport report;
   ModelVector r;

@@ -27,9 +27,9 @@ namespace alphaflex {
 
 class ErrorFilter {
  public:
-  /// Over the run's system and linear solver, with the scheme's parameters and its Newton scaling.
-  ErrorFilter(SaddlePointSystem& system, LinearSolver& solver, const AlphaParameters& parameters, const IntegratorOptions& options)
-      : lin_(system, solver), p_(parameters), scaling_(options.scaling), load_factor_(options.load_factor) {}
+  /// Over the run's system and linear solver, for the steps of `integrator` (its coefficients of S_t).
+  ErrorFilter(SaddlePointSystem& system, LinearSolver& solver, const GeneralizedAlpha& integrator)
+      : lin_(system, solver), integrator_(integrator) {}
 
   /// W^k e (k = `applications`) for the step of size h that reached `s` with increment `increment`
   /// (q_{n+1} = q_n ∘ exp(x)), `e` in the local coordinates of the nodes. The linear solver must hold
@@ -45,9 +45,7 @@ class ErrorFilter {
 
  private:
   LinearizedSystem lin_;
-  AlphaParameters p_;
-  bool scaling_;
-  double load_factor_;
+  const GeneralizedAlpha& integrator_;
 };
 
 }  // namespace alphaflex

@@ -82,6 +82,9 @@ class StepController {
   virtual bool variable() const { return true; }
   /// A step smaller than the policy allows: the message of the failure ("" if none).
   virtual std::string too_small(const StepPlan&) const { return ""; }
+  /// Whether t is a breakpoint of the scene's time functions (a kink of a load or driver, where q⃛
+  /// jumps): the error estimate's history must not reach across it (driver/error_estimator.hpp).
+  virtual bool at_breakpoint(double t) const { (void)t; return false; }
   /// Steps in all, if known in advance (progress line, messages); -1 if not.
   virtual long total_steps(long steps_done, double t) const { (void)steps_done, (void)t; return -1; }
 
@@ -152,6 +155,7 @@ class Adaptive : public StepController {
   /// kNewton times the local error allowed in a step of h: (atol + rtol‖q‖∞) h / t_end.
   std::pair<double, double> newton_tolerance(double h) const override;
   static constexpr double kNewton = 0.1;
+  bool at_breakpoint(double t) const override;
 
   static constexpr double kSafety = 0.9, kMinFactor = 0.2, kMaxFactor = 2.0;
   /// Gustafsson's PI gains for an error ∝ h^k, k = 2 (error per unit step of a second-order scheme).

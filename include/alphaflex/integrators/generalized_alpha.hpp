@@ -70,6 +70,12 @@ class GeneralizedAlpha {
   /// driver/step_controller.hpp); the step size is h.
   StepReport step(MechanicalState& s, double h, double t_next);
 
+  /// The coefficients of the step's residual and iteration matrix S_t for a step of size h: β′, γ′
+  /// (eq. 6), the Bottasso scaling when on, the load factor, and on Lie groups the step's increment
+  /// x (q_{n+1} = q_n ∘ exp(x), kept by address: it must outlive the coefficients). The one place
+  /// they are formed: the step and the filtered error estimate (driver/error_filter.hpp) use it.
+  AssemblyCoefficients step_coefficients(double h, const Eigen::VectorXd& increment) const;
+
   const AlphaParameters& parameters() const { return p_; }
   const Eigen::VectorXd& auxiliary() const { return a_; }
   void set_auxiliary(const Eigen::VectorXd& a) { a_ = a; }
