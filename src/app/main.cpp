@@ -56,7 +56,7 @@ const char* kUsage =
     "  writes OUTDIR/NAME_study.csv and charts (scripts/study_plots.py); docs/study.md\n"
     "  --study FILE       the study map (a file with one top-level study: key)\n"
     "  --study-set k=v    override a study key, e.g. --study-set h=[1e-3,5e-4]\n"
-    "  --ranks-per-run K  under mpirun -np N, a convergence study runs N/K simulations at a time, each\n"
+    "  --ranks-per-run K  under mpirun -np N, a study runs N/K simulations at a time, each\n"
     "                     on K ranks (K divides N; default 1 for scenes up to 20000 unknowns, else N)\n"
     "  --no-plots         write the CSV only\n"
     "  keys: the key tables of every scene and study section, from the reader's schemas (markdown);\n"

@@ -191,6 +191,9 @@ std::string pack(const std::vector<RunOutcome>& outcomes) {
     w.put(o.final_sensors);
     w.put(o.final_state.t);
     w.put(o.final_state.q), w.put(o.final_state.v), w.put(o.final_state.qdd), w.put(o.final_state.lambda);
+    w.put(o.history_t);
+    w.put(static_cast<long>(o.history.size()));
+    for (const auto& v : o.history) w.put(v);
     w.put(o.error_code);
     w.put(o.error);
   }
@@ -228,6 +231,10 @@ std::vector<RunOutcome> unpack(const std::string& bytes) {
     r.get(o.final_sensors);
     r.get(o.final_state.t);
     r.get(o.final_state.q), r.get(o.final_state.v), r.get(o.final_state.qdd), r.get(o.final_state.lambda);
+    r.get(o.history_t);
+    r.get(m);
+    o.history.resize(static_cast<size_t>(m));
+    for (auto& v : o.history) r.get(v);
     r.get(o.error_code);
     r.get(o.error);
     out.push_back(std::move(o));
