@@ -24,8 +24,8 @@ Cases (each a section of the page; the targets are those of the issue "speed on 
   model      the performance model past this machine, calibrated on gridshell n = 12-24 on 1-3 ranks
              (scripts/performance_model.py, ~3 min on a quiet machine)
   low_rank   MUMPS' block low-rank factorization (solver.linear.low_rank) against the exact one on the
-             gridshell and the clamped plate at 1e5-2.5e5 unknowns (scripts/low_rank_benchmark.py,
-             ~30 min on a quiet machine; run alone: --cases low_rank --no-build)
+             gridshell and the clamped plate at 1e5-1e6 unknowns (scripts/low_rank_benchmark.py,
+             ~1 h on a quiet machine; run alone: --cases low_rank --no-build)
 
 It first builds build/alphaflex in Release (unless --no-build or another --exe). Every per-step
 figure is the difference of two runs of 2 and 2 + S steps, so start-up (mesh,

@@ -4,7 +4,7 @@ unknowns and more, on beams (the gridshell) and shells (the clamped plate), for 
 (issue 22, section "Block low-rank factorization", between its markers).
 
     /usr/bin/python3 scripts/low_rank_benchmark.py [--exe build/alphaflex]
-        [--cases gridshell48,plate64,gridshell96,plate96] [--tolerances 1e-8,1e-6,1e-4] [--repeat 2]
+        [--cases gridshell48,plate64,plate96,gridshell144] [--tolerances 1e-8,1e-6,1e-4] [--repeat 2]
         [--results FILE.jsonl] [--table-only] [--no-doc]
     /usr/bin/python3 scripts/benchmark.py --cases low_rank --no-build     (the same, from the generator)
 
@@ -60,8 +60,10 @@ def run(exe, scene, sets, outdir):
         cmd += ["--set", s]
     p = subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True)
     if p.returncode != 0:  # a Newton failure (exit 3) is a result: too loose a tolerance
-        lines = [l for l in (p.stderr or p.stdout).splitlines() if l.strip()]
-        return {"failed": f"exit {p.returncode}: {lines[-1] if lines else ''}"}
+        # The error's first line (alphaflex: ... error ...), not the notes that follow it.
+        lines = [l.strip() for l in (p.stderr or p.stdout).splitlines() if l.strip()]
+        errors = [l for l in lines if "error" in l.lower() or "did not converge" in l] or lines[-1:]
+        return {"failed": f"exit {p.returncode}: {errors[0] if errors else ''}"}
     name = os.path.splitext(os.path.basename(scene))[0]
     with open(os.path.join(outdir, f"{name}.summary.json")) as f:
         s = json.load(f)
@@ -152,7 +154,7 @@ def format_table(results):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--exe", default=os.path.join(ROOT, "build", "alphaflex"))
-    p.add_argument("--cases", default="gridshell48,plate64,gridshell96,plate96")
+    p.add_argument("--cases", default="gridshell48,plate64,plate96,gridshell144")
     p.add_argument("--tolerances", default="1e-8,1e-6,1e-4")
     p.add_argument("--repeat", type=int, default=2)
     p.add_argument("--results", help="append every run to this JSON-lines file")
