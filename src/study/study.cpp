@@ -555,15 +555,15 @@ class Study {
     return k;
   }
 
-  /// " , N runs at a time on k rank(s) each" for the study's first line ("" with one group).
+  /// ", N runs at a time on k rank(s) each" for the study's first line ("" with one group).
   std::string groups_note(int k) const {
     std::ostringstream groups;
     if (size_ > k) groups << ", " << size_ / k << " runs at a time on " << k << " rank(s) each";
     return groups.str();
   }
 
-  /// Runs one task of a mode whose rows need the run itself (its histories): `measure` turns the
-  /// run into the row's extras and the history on the group; an exception is kept in the outcome.
+  /// One run of a study on the group communicator `comm`: `measure` turns the run into the row's
+  /// extras, final values and history on the group; an exception is kept in the outcome.
   /// `tol` > 0: an adaptive run (scene_for).
   RunOutcome run_measured(const SchemeSetting& st, double h, const RunNeeds& needs, MPI_Comm comm, double tol,
                           const std::function<void(const Scene&, const RunRecord&, RunOutcome&)>& measure) {
