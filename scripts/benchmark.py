@@ -3,7 +3,7 @@
 and every measured row appended to docs/benchmarks/performance.csv (the regression record).
 
     /usr/bin/python3 scripts/benchmark.py [--exe build/alphaflex] [--no-build]
-                                          [--cases andrews,small,beam,gridshell,large,policy,model]
+                                          [--cases andrews,small,beam,gridshell,large,policy,model,low_rank]
                                           [--sizes 8,16,32,48,64] [--ranks 1,2] [--baseline OTHER_EXE] [--quick]
 
 Cases (each a section of the page; the targets are those of the issue "speed on one rank"):
@@ -23,6 +23,9 @@ Cases (each a section of the page; the targets are those of the issue "speed on 
              ~5 min on a quiet machine)
   model      the performance model past this machine, calibrated on gridshell n = 12-24 on 1-3 ranks
              (scripts/performance_model.py, ~3 min on a quiet machine)
+  low_rank   MUMPS' block low-rank factorization (solver.linear.low_rank) against the exact one on the
+             gridshell and the clamped plate at 1e5-1e6 unknowns (scripts/low_rank_benchmark.py,
+             ~1 h on a quiet machine; run alone: --cases low_rank --no-build)
 
 It first builds build/alphaflex in Release (unless --no-build or another --exe). Every per-step
 figure is the difference of two runs of 2 and 2 + S steps, so start-up (mesh,
@@ -531,7 +534,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "alphaflex"))
     ap.add_argument("--baseline", help="another alphaflex executable to run side by side (gridshell and beam cases)")
-    ap.add_argument("--cases", default="andrews,small,beam,gridshell,large,policy,model")
+    ap.add_argument("--cases", default="andrews,small,beam,gridshell,large,policy,model,low_rank")
     ap.add_argument("--sizes", default="8,16,32,48,64")
     ap.add_argument("--modified-sizes", default="32,64", help="gridshell sizes also run with modified Newton (1 rank)")
     ap.add_argument("--beam-elements", default="170,500,1000,1700")
@@ -598,7 +601,8 @@ def main():
                             "rss_mb": r["rss_mb"], "mumps_mb": r["mumps_mb"], "step_s": r["wall"]})
     # The sections of the hand-written notes that scripts of their own measure (issue 22): they
     # write between their markers in docs/performance_notes.md, which is copied below.
-    for case, script in (("policy", "modified_newton_policy.py"), ("model", "performance_model.py")):
+    for case, script in (("policy", "modified_newton_policy.py"), ("model", "performance_model.py"),
+                         ("low_rank", "low_rank_benchmark.py")):
         if case in cases:
             subprocess.run([sys.executable, os.path.join(ROOT, "scripts", script), "--exe", exes[0][1]], cwd=ROOT, env=ENV,
                            check=True)

@@ -4,6 +4,7 @@
 
     scripts/study_throughput.py [--exe build/alphaflex] [--ranks 2] [--ranks-per-run 1]
                                 [--repeats 3] [--study SCENE:STUDY ...] [--without-peers]
+                                [--study-set key=value ...]
 
 For each study it runs the one-rank and the N-rank command alternately (--repeats times each, so
 that the load of a shared machine falls on both alike), takes each command's shortest wall time
@@ -17,7 +18,8 @@ Every process runs in a session of its own (setsid -w, also each rank under mpir
 autogroup scheduling (kernel.sched_autogroup_enabled = 1, Debian's default) shares the CPU among
 sessions, not processes, so on a machine busy with other sessions the two ranks of one session
 would share one session's CPU and show no gain whatever the code does. --same-session turns this
-off (the numbers then say what a user of a busy desktop sees).
+off (the numbers then say what a user of a busy desktop sees). --study-set is given to both commands
+(e.g. more step sizes, so that the runs and not the start-up are measured).
 """
 import argparse
 import csv
@@ -67,6 +69,7 @@ def main():
     p.add_argument("--study", action="append", help="SCENE:STUDY (default: the slider-crank and Andrews convergence studies)")
     p.add_argument("--without-peers", action="store_true")
     p.add_argument("--same-session", action="store_true")
+    p.add_argument("--study-set", action="append", default=[], help="key=value for both commands' --study-set")
     a = p.parse_args()
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     lines = [f"| study | runs | 1 rank: wall (s) | runs/s | {a.ranks} ranks, {a.ranks_per_run} per run: wall (s) | runs/s | ratio |",
@@ -77,6 +80,8 @@ def main():
             copy, name, reference_run = study_copy(study, tmp, a.without_peers)
             own = [] if a.same_session else ["setsid", "-w"]
             base = own + [a.exe, "study", scene, "--study", copy, "--no-plots"]
+            for kv in a.study_set:
+                base += ["--study-set", kv]
             cmds = {"1": base + ["-o", os.path.join(tmp, "one")],
                     "N": [a.mpirun, "--oversubscribe", "-np", str(a.ranks)] + base +
                          ["-o", os.path.join(tmp, "many"), "--ranks-per-run", str(a.ranks_per_run)]}

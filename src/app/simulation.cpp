@@ -480,7 +480,8 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
     os << "  MUMPS low-rank      BLR at tolerance " << s.mumps.low_rank_tolerance << ": " << s.mumps.low_rank_entries
        << " entries in the compressed factors (INFOG(35)), " << std::setprecision(3)
        << 100.0 * s.mumps.low_rank_entries / s.mumps.entries << " % of the full-rank " << s.mumps.entries
-       << " (INFOG(29))\n" << std::setprecision(4);
+       << " (INFOG(29)); " << s.mumps.low_rank_flops << " flop per factorization (RINFOG(14)), "
+       << 100.0 * s.mumps.low_rank_flops / s.mumps.flops << " %\n" << std::setprecision(4);
   if (!s.blas.empty()) os << "  BLAS                " << s.blas << "\n";
   if (s.workspace_retries > 0)
     os << "  MUMPS workspace     " << s.workspace_retries << " factorizations repeated with more workspace (ICNTL(14) now "

@@ -103,7 +103,8 @@ std::string summary_json(const Scene& scene, const RunSummary& s) {
                   {"workspace_retries", s.workspace_retries},
                   {"workspace_percent", s.workspace_percent}};
   if (s.mumps.mumps && s.mumps.low_rank_tolerance > 0.0)
-    j["mumps"]["low_rank"] = {{"tolerance", s.mumps.low_rank_tolerance}, {"factor_entries", s.mumps.low_rank_entries}};
+    j["mumps"]["low_rank"] = {{"tolerance", s.mumps.low_rank_tolerance}, {"factor_entries", s.mumps.low_rank_entries},
+                              {"flops_per_factorization", s.mumps.low_rank_flops}};
   j["blas"] = s.blas;
   j["memory_mb"] = {{"peak_all_ranks", s.peak_memory_mb}, {"peak_largest_rank", s.peak_memory_max_mb}};
   if (s.scene_memory_mb >= 0.0) j["memory_mb"]["scene_per_rank"] = s.scene_memory_mb;

@@ -343,6 +343,7 @@ PetscErrorCode LinearSolver::read_statistics(PC pc) {
     PetscReal tolerance = 0.0;
     PetscCall(MatMumpsGetInfog(F, 35, &compressed));
     PetscCall(MatMumpsGetCntl(F, 7, &tolerance));
+    PetscCall(MatMumpsGetRinfog(F, 14, &stats_.low_rank_flops));
     stats_.low_rank_tolerance = tolerance;
     stats_.low_rank_entries = compressed < 0 ? -1e6 * static_cast<double>(compressed) : static_cast<double>(compressed);
   }

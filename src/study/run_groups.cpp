@@ -198,6 +198,9 @@ std::string pack(const std::vector<RunOutcome>& outcomes) {
     for (const auto& e : o.energy)
       w.put(e.variant), w.put(e.part), w.put(e.kind), w.put(e.elements), w.put(e.mean), w.put(e.peak), w.put(e.share_mean),
           w.put(e.share_peak);
+    w.put(o.history_t);
+    w.put(static_cast<long>(o.history.size()));
+    for (const auto& v : o.history) w.put(v);
     w.put(o.error_code);
     w.put(o.error);
   }
@@ -244,6 +247,10 @@ std::vector<RunOutcome> unpack(const std::string& bytes) {
     for (auto& e : o.energy)
       r.get(e.variant), r.get(e.part), r.get(e.kind), r.get(e.elements), r.get(e.mean), r.get(e.peak), r.get(e.share_mean),
           r.get(e.share_peak);
+    r.get(o.history_t);
+    r.get(m);
+    o.history.resize(static_cast<size_t>(m));
+    for (auto& v : o.history) r.get(v);
     r.get(o.error_code);
     r.get(o.error);
     out.push_back(std::move(o));

@@ -29,9 +29,12 @@ struct FactorStatistics {
   double memory_sum_mb = 0.0; ///< INFOG(22): the same, summed over the ranks
   /// Block low-rank factorization (MUMPS' BLR, ICNTL(35) = 2, CNTL(7) = the tolerance; Amestoy et
   /// al. 2015, SIAM J. Sci. Comput. 37(3)): 0 when off. With it on, `entries` is still the full-rank
-  /// count INFOG(29) and `low_rank_entries` the entries the compressed factors hold, INFOG(35).
+  /// count INFOG(29) and `low_rank_entries` the entries the compressed factors hold, INFOG(35);
+  /// `flops` is still the full-rank count RINFOG(3) and `low_rank_flops` the operations the BLR
+  /// factorization did, RINFOG(14) (MUMPS 5.5 users' guide; its ICNTL(4) = 2 statistics print both).
   double low_rank_tolerance = 0.0;
   double low_rank_entries = 0.0;
+  double low_rank_flops = 0.0;
 };
 
 /// MUMPS' estimate, from its analysis, of the memory its factorization takes (0 before an analysis or

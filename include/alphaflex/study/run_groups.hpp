@@ -81,6 +81,10 @@ struct RunOutcome {
   std::vector<double> times;
   std::vector<std::vector<double>> histories;
   std::vector<EnergyRow> energy;
+  /// The run's time history for the study's charts (NAME_history.csv; oscillation and blow_up):
+  /// its output times and, at each, the values the mode keeps.
+  std::vector<double> history_t;
+  std::vector<std::vector<double>> history;
   int error_code = 0;                ///< exit code of an exception other than a failed run (exit_agreement.hpp)
   std::string error;                 ///< its message
 };

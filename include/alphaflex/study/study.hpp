@@ -2,10 +2,10 @@
 // `alphaflex study`: runs a scene over step sizes and scheme settings (or model variants), measures
 // errors against a named reference, cost (process CPU time, Newton iterations) and stability
 // numbers, writes them to a CSV and calls scripts/study_plots.py for the charts (docs/study.md,
-// docs/stability.md). Collective over the communicator: a convergence or fidelity study splits the
-// ranks into groups that run different simulations concurrently (StudyOptions::ranks_per_run), the
-// other modes run every simulation on every rank; rank 0 runs the peers (IDA, Radau), writes the files and
-// calls the plotting script.
+// docs/stability.md). Collective over the communicator: the convergence, oscillation, blow_up and
+// fidelity modes split the ranks into groups that run different simulations concurrently
+// (StudyOptions::ranks_per_run); rank 0 runs the peers (IDA, Radau), writes the files and calls
+// the plotting script.
 #include <mpi.h>
 
 #include <limits>
@@ -25,11 +25,10 @@ struct StudyOptions {
   std::vector<std::string> scene_overrides;  ///< --set: applied to every run, after the setting's solver keys
   bool verbose = true;                       ///< a line per run and the summary on rank 0
   bool plots = true;                         ///< false: never call the plotting script (--no-plots)
-  /// Ranks of each simulation of a convergence or fidelity study (--ranks-per-run): the job's ranks split into
-  /// groups of this size that run different simulations at the same time (run_groups.hpp). 0: the
-  /// default (1 for a scene of at most kSmallSceneUnknowns unknowns, else every rank). It must
-  /// divide the number of ranks (fidelity: the default from the reference variant's unknowns). The
-  /// other modes run every simulation on every rank.
+  /// Ranks of each simulation of a study (--ranks-per-run): the job's ranks split into groups of
+  /// this size that run different simulations at the same time (run_groups.hpp). 0: the default (1
+  /// for a scene of at most kSmallSceneUnknowns unknowns, else every rank; fidelity: from the
+  /// reference variant's unknowns). It must divide the number of ranks.
   int ranks_per_run = 0;
 };
 
