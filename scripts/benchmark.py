@@ -3,7 +3,7 @@
 and every measured row appended to docs/benchmarks/performance.csv (the regression record).
 
     /usr/bin/python3 scripts/benchmark.py [--exe build/alphaflex] [--no-build]
-                                          [--cases andrews,small,beam,gridshell,large,policy,model,low_rank]
+                                          [--cases andrews,small,newton_default,beam,gridshell,large,policy,model,low_rank]
                                           [--sizes 8,16,32,48,64] [--ranks 1,2] [--baseline OTHER_EXE] [--quick]
 
 Cases (each a section of the page; the targets are those of the issue "speed on one rank"):
@@ -12,6 +12,10 @@ Cases (each a section of the page; the targets are those of the issue "speed on 
              (inputs/studies/andrews_speed.yaml; also SUNDIALS IDA for context).
   small      the small-system path: dense LU against MUMPS on Andrews (61 unknowns) and on beams
              of 72 to 306 unknowns (-af_dense_lu 0 forces MUMPS).
+  newton_default
+             Newton's default (solver.newton.modified: auto) against full and modified Newton per step
+             on the slider-crank (18 unknowns: full), Andrews (61) and the flexible-link slider-crank
+             (56: modified); ~1 min.
   beam       a flexible beam spun up by a driven revolute joint (inputs/beam_spinup.yaml, spin-up
              in 1 s, rho_inf = 0.8, h = 1e-4 s) at ~1e3 to ~1e4 unknowns: steps measured from a
              checkpoint at t = 0.5 s (the beam in full motion), full and modified Newton.
@@ -240,10 +244,12 @@ def case_small(exe, work):
     rows = []
     andrews = os.path.join(ROOT, "inputs", "andrews.yaml")
     beam = os.path.join(ROOT, "inputs", "beam_spinup.yaml")
-    cases = [("andrews", andrews, ["output.hdf5=off"], 0.03 / 100, 100)]
+    # Full Newton (one factorization per iteration), as these rows have been measured from the
+    # start: they compare the factorizations of the two paths.
+    cases = [("andrews", andrews, ["output.hdf5=off", "solver.newton.modified=off"], 0.03 / 100, 100)]
     for el in (11, 17, 26, 34, 50):
         cases.append((f"beam {el} elements", beam, [f"mesh.elements={el}", "parameters.Ts=1", "output.hdf5=off",
-                                                   "solver.h=1e-3"], 1e-3, 200))
+                                                   "solver.h=1e-3", "solver.newton.modified=off"], 1e-3, 200))
     for name, scene, sets, h, steps in cases:
         for path, extra in (("dense", ()), ("MUMPS", ("-af_dense_lu", "0"))):
             a = alphaflex(exe, scene, os.path.join(work, "small"), sets + [f"solver.t_end={2 * h!r}"], extra=extra)
@@ -275,6 +281,62 @@ def section_small(rows):
                          f"{100 * m['factorization_share']:.0f} % |")
         else:
             lines.append(f"| {name} | {m['unknowns']} | (MUMPS above the limit) | {1e6 * m['step_s']:.0f} | – | – |")
+    return lines
+
+
+# ---------------------------------------------------------------------------------------------
+# newton_default: the default Newton method (solver.newton.modified: auto) against both explicit
+# settings, per step, on one scene below and two above its threshold (seconds, not minutes)
+NEWTON_DEFAULT_CASES = [
+    ("slider-crank (below the threshold)", "slider_crank.yaml", [], 5e-4, 1000),
+    ("Andrews (above)", "andrews.yaml", [], 0.03 / 100, 100),
+    ("flexible slider-crank links (above)", "slider_crank_flexible_links.yaml", [], 1e-3, 400),
+]
+
+
+def case_newton_default(exe, work, repeat=3):
+    """The three settings alternated `repeat` times; each keeps its median per-step figure (these
+    runs last about a second, so the load of the machine is most of their spread)."""
+    rows = []
+    for name, scene_file, sets, h, steps in NEWTON_DEFAULT_CASES:
+        scene = os.path.join(ROOT, "inputs", scene_file)
+        best = {}
+        for newton, key in [(n, k) for _ in range(repeat) for n, k in
+                            (("full", ["solver.newton.modified=off"]), ("modified", ["solver.newton.modified=on"]),
+                             ("default", []))]:
+            base = sets + key + ["output.hdf5=off", "output.checkpoint_at_end=off", "output.progress=0",
+                                 f"solver.h={h!r}"]
+            stem = os.path.splitext(scene_file)[0]
+            out = os.path.join(work, "newton_default_" + stem)
+            a = alphaflex(exe, scene, out, base + [f"solver.t_end={2 * h!r}"])
+            b = alphaflex(exe, scene, out, base + [f"solver.t_end={(2 + steps) * h!r}"])
+            row = differential(a, b)
+            # Which method the default took: the summary reports modified Newton's counters only
+            # when it ran (summary_json.cpp).
+            took = "modified" if "modified_newton" in ar.load_summary(out, stem) else "full"
+            row.update(case="newton_default", exe="this", n=name, ranks=1,
+                       newton=newton if newton != "default" else f"default ({took})")
+            best.setdefault(newton, []).append(row)
+        for runs in best.values():
+            row = sorted(runs, key=lambda r: r["step_s"])[len(runs) // 2]
+            rows.append(row)
+            print(f"newton_default {name:38s} {row['newton']:20s} {row['unknowns']:5d} unknowns "
+                  f"{1e6 * row['step_s']:.0f} us/step  Newton {row['newton_per_step']:.2f}/step", flush=True)
+    return rows
+
+
+def section_newton_default(rows):
+    lines = ["## Newton's default: `solver.newton.modified: auto`", "",
+             "Per step (difference of two runs), one rank: full Newton, modified Newton and the default, which takes "
+             "modified Newton from `solver.newton.modified_from` = 30 unknowns (the measurements on every scene: "
+             "section \"Modified Newton by default\" below).", "",
+             "| scene | unknowns | full (µs/step) | modified (µs/step) | default (µs/step) | default took | full / default |",
+             "|---|---:|---:|---:|---:|---|---:|"]
+    for name in dict.fromkeys(r["n"] for r in rows):
+        sel = {r["newton"].split(" ")[0]: r for r in rows if r["n"] == name}
+        d = sel["default"]
+        lines.append(f"| {name} | {d['unknowns']} | {1e6 * sel['full']['step_s']:.0f} | {1e6 * sel['modified']['step_s']:.0f} "
+                     f"| {1e6 * d['step_s']:.0f} | {d['newton'][9:-1]} | {sel['full']['step_s'] / d['step_s']:.2f} |")
     return lines
 
 
@@ -496,7 +558,7 @@ def section_gridshell(rows, ranks, fig_dir, baseline):
 def case_large(exe, work, n, ranks):
     scene = os.path.join(ROOT, "inputs", "gridshell.yaml")
     r = alphaflex(exe, scene, os.path.join(work, "large"), [f"mesh.parameters.n={n}", f"solver.t_end={GRID_H!r}",
-                                                           "output.progress=0"], ranks)
+                                                           "output.progress=0", "solver.newton.modified=off"], ranks)
     r.update(n=n, ranks=ranks)
     print(f"large n={n} ranks={ranks}: {r['unknowns']} unknowns, {r['rss_mb']:.0f} MB, {r['wall']:.1f} s", flush=True)
     return r
@@ -534,7 +596,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "alphaflex"))
     ap.add_argument("--baseline", help="another alphaflex executable to run side by side (gridshell and beam cases)")
-    ap.add_argument("--cases", default="andrews,small,beam,gridshell,large,policy,model,low_rank")
+    ap.add_argument("--cases", default="andrews,small,newton_default,beam,gridshell,large,policy,model,low_rank")
     ap.add_argument("--sizes", default="8,16,32,48,64")
     ap.add_argument("--modified-sizes", default="32,64", help="gridshell sizes also run with modified Newton (1 rank)")
     ap.add_argument("--beam-elements", default="170,500,1000,1700")
@@ -609,6 +671,10 @@ def main():
     if "small" in cases:
         rows = case_small(exes[0][1], work)
         sections.append(section_small(rows))
+        record_rows += rows
+    if "newton_default" in cases:
+        rows = case_newton_default(exes[0][1], work)
+        sections.append(section_newton_default(rows))
         record_rows += rows
 
     # The record: every run appends its rows (revision, date), so later changes can be set side by side.

@@ -221,7 +221,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     sum.final_sensors = values;
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
-    if (rs.integrator.newton.modified) {
+    if (integrator.modified_newton()) {
       sum.reused_iterations = integrator.reused_iterations();
       sum.contraction_refreshes = integrator.contraction_refreshes();
     }

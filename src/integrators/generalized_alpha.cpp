@@ -14,7 +14,10 @@
 namespace alphaflex {
 GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solver, AlphaParameters params,
                                    IntegratorOptions options)
-    : lin_(system, solver), p_(std::move(params)), opt_(options) {
+    : lin_(system, solver),
+      p_(std::move(params)),
+      opt_(options),
+      modified_(options.newton.uses_modified(system.subdomain().dof_map().global_size())) {
   p_.validate();
 }
 
@@ -126,7 +129,7 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h, double t_next) {
 
 StepReport GeneralizedAlpha::step_at(MechanicalState& s, double h, double t_next) {
   bool used_old_matrix = false;
-  if (!opt_.newton.modified) return try_step(s, h, t_next, false, used_old_matrix);
+  if (!modified_) return try_step(s, h, t_next, false, used_old_matrix);
   try {
     return try_step(s, h, t_next, true, used_old_matrix);
   } catch (const SolverError&) {

@@ -125,7 +125,12 @@ const Schema& newton_schema() {
       {"rtol", KeyType::Number, "–", "1e-9", "relative tolerance on the last correction", Range::positive(), "tolerance"},
       {"atol", KeyType::Number, "m, rad", "1e-12", "absolute tolerance on the coordinate correction", Range::non_negative(), "tolerance (m, rad)"},
       {"atol_lambda", KeyType::Number, "N, N·m", "1e-9", "absolute tolerance on the multiplier correction", Range::non_negative(), "tolerance (N)"},
-      {"modified", KeyType::Flag, "–", "off", "modified Newton: keep the factorization of S_t across iterations and steps"},
+      {"modified", KeyType::Choice, "–", "`auto`",
+       "modified Newton: keep the factorization of S_t across iterations and steps (`on`), full Newton (`off`), or `auto`: modified Newton from `modified_from` unknowns (all ranks together), full Newton below (measured: docs/performance.md, \"Modified Newton by default\"). Dynamic steps only: static load steps use full Newton",
+       {}, "", "", {"auto", "on", "off"}},
+      {"modified_from", KeyType::Integer, "unknowns", "30",
+       "with `modified: auto`: the number of unknowns (coordinates and multipliers of the whole model) from which modified Newton is used",
+       Range::closed(1, 1000000000)},
       {"max_contraction", KeyType::Number, "–", "0.5",
        "with `modified`: contraction rate θ = ‖Δ_k‖∞/‖Δ_{k−1}‖∞ above which S_t is assembled and factored afresh",
        Range::open(0, 1), "contraction rate"},
@@ -269,7 +274,10 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
     o.rtol = n.number("rtol", o.rtol);
     o.atol = n.number("atol", o.atol);
     o.atol_lambda = n.number("atol_lambda", o.atol_lambda);
-    o.modified = n.flag("modified", o.modified);
+    static constexpr NewtonOptions::Method methods[] = {NewtonOptions::Method::automatic, NewtonOptions::Method::modified,
+                                                        NewtonOptions::Method::full};
+    if (n.has("modified")) o.method = methods[n.choice("modified", 0)];
+    o.modified_from = n.integer("modified_from", static_cast<int>(o.modified_from));
     o.max_contraction = n.number("max_contraction", o.max_contraction);
   }
   rs.statics.newton = rs.integrator.newton;

@@ -11,6 +11,8 @@ namespace alphaflex::testing {
 namespace {
 
 const std::vector<std::string> kModified{"solver.newton.modified=on"};
+// Full Newton by name: the default (`auto`) takes modified Newton on the 72 unknowns of the beam.
+const std::vector<std::string> kFull{"solver.newton.modified=off"};
 
 std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
@@ -44,8 +46,8 @@ TEST(ModifiedNewton, SpinUpBeamKeepsOrderTwoInPositionsVelocitiesAndMultipliers)
 // time discretization, measured as the difference between h and h/2.
 TEST(ModifiedNewton, DiffersFromFullNewtonOnlyByTheNewtonTolerance) {
   const std::vector<std::string> base{"parameters.Ts=1", "solver.t_end=0.5", "solver.rho_inf=0.7"};
-  const RunSummary full = run_scene("beam_spinup", with(base, {"solver.h=0.0025"}));
-  const RunSummary half = run_scene("beam_spinup", with(base, {"solver.h=0.00125"}));
+  const RunSummary full = run_scene("beam_spinup", with(base, with(kFull, {"solver.h=0.0025"})));
+  const RunSummary half = run_scene("beam_spinup", with(base, with(kFull, {"solver.h=0.00125"})));
   const RunSummary modified = run_scene("beam_spinup", with(base, with(kModified, {"solver.h=0.0025"})));
   const StateDifference discretization = spatial_difference(full.final_state, half.final_state);
   const StateDifference newton = spatial_difference(full.final_state, modified.final_state);
@@ -83,6 +85,34 @@ TEST(ModifiedNewton, TightContractionLimitRefactorsMoreOften) {
   EXPECT_GT(tight.contraction_refreshes, loose.contraction_refreshes);
   EXPECT_GT(tight.factorizations, loose.factorizations);
   EXPECT_LT(loose.factorizations, loose.steps / 2);
+}
+
+// The default, `solver.newton.modified: auto`: modified Newton from `modified_from` (30) unknowns of
+// the whole model, full Newton below (docs/performance.md, "Modified Newton by default"). The
+// slider-crank (18 unknowns) runs full Newton, Andrews' 21-coordinate form (41 unknowns) modified
+// Newton, each iteration for iteration as with the explicit setting; the threshold moves with the key.
+TEST(ModifiedNewton, DefaultTakesModifiedNewtonFromThirtyUnknowns) {
+  const std::vector<std::string> shorter{"solver.t_end=0.05"};
+  const RunSummary small = run_scene("slider_crank", shorter);
+  const RunSummary small_full = run_scene("slider_crank", with(shorter, kFull));
+  ASSERT_EQ(small.unknowns, 18);
+  EXPECT_EQ(small.reused_iterations, -1);  // full Newton
+  EXPECT_EQ(small.newton_total, small_full.newton_total);
+  EXPECT_EQ(small.factorizations, small_full.factorizations);
+  EXPECT_EQ(small.final_state.q, small_full.final_state.q);
+
+  const std::vector<std::string> andrews{"solver.t_end=3e-3"};
+  const RunSummary large = run_scene("andrews_21", andrews);
+  const RunSummary large_modified = run_scene("andrews_21", with(andrews, kModified));
+  ASSERT_EQ(large.unknowns, 41);
+  EXPECT_GT(large.reused_iterations, 0);  // modified Newton
+  EXPECT_EQ(large.newton_total, large_modified.newton_total);
+  EXPECT_EQ(large.factorizations, large_modified.factorizations);
+  EXPECT_EQ(large.final_state.q, large_modified.final_state.q);
+
+  // The threshold is a key: at 42 unknowns Andrews' 41 fall below it, at 18 the slider-crank reaches it.
+  EXPECT_EQ(run_scene("andrews_21", with(andrews, {"solver.newton.modified_from=42"})).reused_iterations, -1);
+  EXPECT_GT(run_scene("slider_crank", with(shorter, {"solver.newton.modified_from=18"})).reused_iterations, 0);
 }
 
 }  // namespace

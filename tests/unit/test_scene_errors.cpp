@@ -171,6 +171,10 @@ TEST(SceneErrors, RangeAndChoiceMessagesComeFromTheSchema) {
             "scene.yaml:1: solver.newton.max_contraction: expected contraction rate in (0, 1), got 1");
   EXPECT_EQ(error_of("solver: {h: 1.0e-3, t_end: 0.01, scheme: rk4}\n" + kPendulum.substr(kPendulum.find('\n') + 1)),
             "scene.yaml:1: solver.scheme: unknown scheme 'rk4' (expected one of generalized-alpha, hht, newmark)");
+  EXPECT_EQ(error_of("solver: {h: 1.0e-3, t_end: 0.01, newton: {modified: sometimes}}\n" + kPendulum.substr(kPendulum.find('\n') + 1)),
+            "scene.yaml:1: solver.newton.modified: unknown modified 'sometimes' (expected one of auto, on, off)");
+  EXPECT_EQ(error_of("solver: {h: 1.0e-3, t_end: 0.01, newton: {modified_from: 0}}\n" + kPendulum.substr(kPendulum.find('\n') + 1)),
+            "scene.yaml:1: solver.newton.modified_from: expected an integer from 1 to 1000000000");
 }
 
 // output.checkpoint_every is a key of type Interval: a whole number of steps (a name of

@@ -15,7 +15,8 @@
 // once Δq is at round-off level (≤ 10⁴ ε ‖q‖): λ then carries the round-off of q times
 // β' ~ 1/(βh²), which no further iteration removes.
 //
-// Modified Newton (NewtonOptions::modified): S_t is kept factored across iterations and steps. The
+// Modified Newton (NewtonOptions::method; by default from NewtonOptions::modified_from unknowns
+// on, decided once from the global size): S_t is kept factored across iterations and steps. The
 // iteration then converges linearly with a rate θ_k = ‖Δ_k‖/‖Δ_{k−1}‖, and a small last correction
 // no longer means a small error: the error left after Δ_k is about θ/(1−θ)‖Δ_k‖ (the estimate of
 // simplified Newton in Hairer & Wanner, Solving ODEs II, Sec. IV.8, eq. 8.13), which is what the
@@ -103,6 +104,9 @@ class GeneralizedAlpha {
   /// Factorizations of S_t kept from an earlier iteration (modified Newton), and refactorizations
   /// forced by a slow contraction.
   long reused_iterations() const { return reused_; }
+  /// Whether the steps iterate with modified Newton (NewtonOptions::uses_modified at this
+  /// system's global size: the same on every rank).
+  bool modified_newton() const { return modified_; }
   long contraction_refreshes() const { return refreshes_; }
   const PhaseTimes& times() const { return lin_.times(); }
   PhaseTimes& times() { return lin_.times(); }
@@ -112,6 +116,7 @@ class GeneralizedAlpha {
   AlphaParameters p_;
   IntegratorOptions opt_;
   Eigen::VectorXd a_;
+  bool modified_ = false;    ///< modified Newton (resolved from opt_.newton at construction)
   double factored_h_ = 0.0;  ///< h of the S_t now factored (0: none usable)
   double h_aux_ = 0.0;       ///< the h a_ belongs to
   bool variable_ = false, estimate_ = false;
