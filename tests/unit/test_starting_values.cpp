@@ -32,17 +32,20 @@ RunSummary run_text(const TestOutputDir& dir, const std::string& name, const std
 
 // The corrected start on quick_return (ρ∞ = 0.8), against a reference run of the same scene at
 // h = 3.125e-5 (its own start-up error is (1/32)² of a run at 1e-3 and damped by ρ∞^32 per coarse
-// step). What was measured (docs/theory/starting_values.md §1): the multipliers' start-up error
-// (0.095 N at the first step of h = 1e-3, alternating and decaying over ~10 steps) falls like h²
-// (0.024 N at h = 5e-4, 0.0059 N at 2.5e-4), with either start; a₀ = q̈₀ + Δ_α h q⃛₀ changes the first
-// step by the O(h) term of a₀ alone (3.7e-3 N at h = 1e-3), which is small here. So the test checks
-// that (1) the corrected start is the standard one when Δ_α = α_m − α_f = 0 (ρ∞ = 1), bit for bit;
-// (2) with Δ_α ≠ 0 it changes the first step's multipliers, by an amount that vanishes with h (the
-// size of the O(h) term of a₀: measured 3.7e-3 N at h = 1e-3, 9.2e-4 N at 5e-4; checked between 1e-4
-// and 1e-2 N, and falling at least 1.5× when h is halved); (3) the error over the first 0.05 s falls
-// like h² (ratio > 3.5 when h is halved) for both starts.
+// step). What was measured (docs/theory/starting_values.md §1, also at ρ∞ = 0.5 and 0.95): the
+// multipliers carry a start-up transient — the largest error of the reactions over the first 0.05 s
+// is 0.155 N (standard) and 0.151 N (corrected) at h = 1e-3, 20× that over (0.05, 0.2] s (7.6e-3 N) —
+// but it is O(h²)·ρ∞ⁿ, not O(h)·ρ∞ⁿ: 0.039 / 0.038 N at h = 5e-4 (ratio 3.99); a₀ = q̈₀ + Δ_α h q⃛₀
+// removes only the O(h) part, which is small here (3.7e-3 N at the first step of h = 1e-3, 9.2e-4 N at
+// 5e-4), so the error over the first 50 steps does not fall to the later level with either start.
+// The test checks what holds: (1) the corrected start is the standard one when Δ_α = α_m − α_f = 0
+// (ρ∞ = 1), bit for bit; (2) with Δ_α ≠ 0 it changes the first step's multipliers by an amount
+// that vanishes with h (checked between 1e-4 and 1e-2 N, and falling at least 1.5× when h is
+// halved); (3) the start-up error falls like h² (ratio > 3.5 when h is halved) for both starts;
+// (4) it is a transient: at h = 1e-3 the first 0.05 s carry more than 10× the error of the later
+// steps (measured 20.2 and 19.8), and the corrected start leaves it within 10 % (measured −2.4 %).
 TEST(StartingValues, CorrectedStartOnQuickReturn) {
-  const std::vector<std::string> end{"solver.t_end=0.05"};
+  const std::vector<std::string> end{"solver.t_end=0.2"};
   auto run = [&](std::vector<std::string> more) {
     more.insert(more.end(), end.begin(), end.end());
     return run_scene("quick_return", more);
@@ -51,33 +54,41 @@ TEST(StartingValues, CorrectedStartOnQuickReturn) {
   const RunSummary s1 = run({"solver.h=1e-3", "solver.rho_inf=1"});
   const RunSummary c1 = run({"solver.h=1e-3", "solver.rho_inf=1", "solver.start=corrected"});
   EXPECT_EQ(s1.final_state.lambda, c1.final_state.lambda);
-  // (2), (3)
+  // (2), (3), (4): error[h][start] over [0, 0.05 s], later[h][start] over (0.05, 0.2] s.
   const RunSummary ref = run({"solver.h=3.125e-5"});
-  double first_step_change[2] = {0, 0}, error[2][2] = {{0, 0}, {0, 0}};
+  double first_step_change[2] = {0, 0}, error[2][2] = {{0, 0}, {0, 0}}, later[2][2] = {{0, 0}, {0, 0}};
   for (int k = 0; k < 2; ++k) {
     const double h = k == 0 ? 1e-3 : 5e-4;
-    const size_t stride = k == 0 ? 32 : 16, steps = k == 0 ? 50 : 100;
-    const RunSummary standard = run({"solver.h=" + std::to_string(h)});
-    const RunSummary corrected = run({"solver.h=" + std::to_string(h), "solver.start=corrected"});
-    ASSERT_EQ(standard.sensor_history.size(), steps + 1);
+    const size_t stride = k == 0 ? 32 : 16, start_steps = k == 0 ? 50 : 100, steps = 4 * start_steps;
+    const RunSummary runs[2] = {run({"solver.h=" + std::to_string(h)}),
+                                run({"solver.h=" + std::to_string(h), "solver.start=corrected"})};
+    ASSERT_EQ(runs[0].sensor_history.size(), steps + 1);
+    ASSERT_EQ(runs[1].sensor_history.size(), steps + 1);
     for (const char* n : {"slot_fx", "slot_fy", "O_fx", "O_fy"}) {
       const size_t c = column(ref, n);
       first_step_change[k] =
-          std::max(first_step_change[k], std::fabs(corrected.sensor_history[1][c] - standard.sensor_history[1][c]));
+          std::max(first_step_change[k], std::fabs(runs[1].sensor_history[1][c] - runs[0].sensor_history[1][c]));
       for (size_t i = 1; i <= steps; ++i) {
-        EXPECT_NEAR(standard.times_out[i], ref.times_out[stride * i], 1e-12);
+        EXPECT_NEAR(runs[0].times_out[i], ref.times_out[stride * i], 1e-12);
         const double y = ref.sensor_history[stride * i][c];
-        error[k][0] = std::max(error[k][0], std::fabs(standard.sensor_history[i][c] - y));
-        error[k][1] = std::max(error[k][1], std::fabs(corrected.sensor_history[i][c] - y));
+        for (int j = 0; j < 2; ++j) {
+          double& e = i <= start_steps ? error[k][j] : later[k][j];
+          e = std::max(e, std::fabs(runs[j].sensor_history[i][c] - y));
+        }
       }
     }
-    std::printf("h %.1e: first-step change %.3e N; multiplier error over 0.05 s: standard %.3e, corrected %.3e N\n", h,
-                first_step_change[k], error[k][0], error[k][1]);
+    std::printf("h %.1e: first-step change %.3e N; multiplier error over [0, 0.05] s: standard %.3e, corrected %.3e N; "
+                "over (0.05, 0.2] s: %.3e, %.3e N\n",
+                h, first_step_change[k], error[k][0], error[k][1], later[k][0], later[k][1]);
   }
   EXPECT_GT(first_step_change[0], 1e-4);
   EXPECT_LT(first_step_change[0], 1e-2);
   EXPECT_GT(first_step_change[0] / first_step_change[1], 1.5);
-  for (int j = 0; j < 2; ++j) EXPECT_GT(error[0][j] / error[1][j], 3.5) << (j ? "corrected" : "standard");
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_GT(error[0][j] / error[1][j], 3.5) << (j ? "corrected" : "standard");
+    EXPECT_GT(error[0][j], 10.0 * later[0][j]) << (j ? "corrected" : "standard");
+  }
+  EXPECT_NEAR(error[0][1] / error[0][0], 1.0, 0.1);
 }
 
 // The paper's slider-crank with its massless hinge (point 5) placed 1 cm and 2 cm off the crank tip:
