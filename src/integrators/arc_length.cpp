@@ -82,6 +82,7 @@ bool ArcLength::step(const MechanicalState& sn, double lfn, const Linearization&
   MechanicalState before;
   ModelVector dx;
   double d_load = 0.0, s0 = 0.0;
+  const NewtonScales scales = NewtonScales::of(sub);  // per-coordinate scales of the stopping rule
   for (int it = 1; it <= opt_.newton.max_iterations; ++it) {
     Linearization L;
     try {
@@ -131,12 +132,13 @@ bool ArcLength::step(const MechanicalState& sn, double lfn, const Linearization&
     m.retract(trial.q, dx.dofs);
     trial.lambda += dx.multipliers;
     inc += dL;
-    const NewtonRecord rec = newton_record(sub, L.r, dx.dofs, dx.multipliers);
+    NewtonRecord rec = newton_record(sub, L.r, dx.dofs, dx.multipliers);
+    scales.measure(rec, sub, opt_.newton, trial.q, dx.dofs);
     history.push_back(rec);
     if (!std::isfinite(rec.correction_q) || !std::isfinite(rec.correction_lambda) || !std::isfinite(inc)) return false;
     const bool load_converged =
         std::fabs(dL) <= opt_.newton.rtol * std::max(std::fabs(lfn + inc), std::fabs(inc)) + opt_.newton.atol;
-    if (load_converged && newton_converged(opt_.newton, rec, it, sub.max_abs(trial.q), sub.max_abs(trial.lambda))) {
+    if (load_converged && newton_converged(opt_.newton, rec, it, sub.max_abs(trial.lambda))) {
       s = trial;
       dlf = inc;
       return true;

@@ -15,6 +15,7 @@ namespace alphaflex {
 GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solver, AlphaParameters params,
                                    IntegratorOptions options)
     : lin_(system, solver),
+      scales_(NewtonScales::of(system.subdomain())),
       p_(std::move(params)),
       opt_(options),
       modified_(options.newton.uses_modified(system.subdomain().dof_map().global_size())) {
@@ -47,10 +48,22 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
     bool& flag;
     ~Reset() { flag = false; }
   } reset{lin_.initializing};
-  AssemblyCoefficients proj;
-  proj.identity = 1.0;
   if (opt_.consistent_start && sub.global_model().num_multipliers() > 0) {
-    // Gauss–Newton projection onto Φ(q, t0) = 0 with the minimum-norm correction.
+    // Gauss–Newton projection onto Φ(q, t0) = 0: each correction solves
+    // [[W, Φ_qᵀ],[Φ_q, 0]] [Δq; μ] = [0; Φ], the minimiser of ½ΔqᵀWΔq on the linearized
+    // constraints. W = M + εI (mass-weighted, the default): a coordinate moves in inverse
+    // proportion to its mass, so massless points (weight ε) take the correction and the bodies
+    // the user placed keep their places up to ε/m of it (docs/theory/starting_values.md); W = I:
+    // the minimum-norm correction, which moves metres and radians alike.
+    AssemblyCoefficients proj;
+    proj.identity = 1.0;
+    if (opt_.projection == StartProjection::Mass) {
+      const double eps = projection_regularisation(s);
+      if (eps > 0.0) {
+        proj.mass = 1.0;
+        proj.identity = eps;
+      }
+    }
     ModelVector r;
     for (int it = 0; it < 50; ++it) {
       const ModelVector x = lin_.solve(s, proj, ConstraintRows::Position, nullptr);
@@ -78,7 +91,18 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
     const ModelVector x = lin_.solve(s, vel, ConstraintRows::Velocity, nullptr);
     s.v -= x.dofs;
   }
-  // Accelerations and multipliers from the index-1 system at t0 (linear in q̈, λ: one solve).
+  consistent_accelerations(s);
+  a_ = s.qdd;  // a_0 = q̈_0 (eq. 3)
+  h_aux_ = 0.0;  // no shift yet: a_0 − q̈_0 = 0 whatever the first h
+  factored_h_ = 0.0;  // the solves above factored other matrices
+  // Corrected start: a_0 needs the first step's h, which the first step gives.
+  start_pending_ = opt_.start == StartValues::Corrected && p_.alpha_m != p_.alpha_f;
+  t_start_ = s.t;
+  return sub.max_abs(m.difference(q_in, s.q));
+}
+
+void GeneralizedAlpha::consistent_accelerations(MechanicalState& s) {
+  // Accelerations and multipliers from the index-1 system at t (linear in q̈, λ: one solve).
   s.qdd.setZero();
   s.lambda.setZero();
   AssemblyCoefficients acc;
@@ -87,10 +111,37 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   const ModelVector x = lin_.solve(s, acc, ConstraintRows::Acceleration, nullptr);
   s.qdd = -x.dofs;
   s.lambda = -x.multipliers;
-  a_ = s.qdd;  // a_0 = q̈_0 (eq. 3)
-  h_aux_ = 0.0;  // no shift yet: a_0 − q̈_0 = 0 whatever the first h
-  factored_h_ = 0.0;  // the solves above factored other matrices
-  return sub.max_abs(m.difference(q_in, s.q));
+}
+
+double GeneralizedAlpha::projection_regularisation(const MechanicalState& s) {
+  // The largest diagonal entry of M at q0 sets the scale of the weights (kg, kg·m²): ε = 1e-12
+  // of it keeps W = M + εI positive definite where M is singular (massless points, a model of
+  // springs and joints only) while a body of mass m moves by about ε/m of what a massless point
+  // beside it moves (docs/theory/starting_values.md).
+  AssemblyCoefficients mass;
+  mass.mass = 1.0;
+  SaddlePointSystem& sys = lin_.system();
+  check_petsc(sys.assemble(s, mass, ConstraintRows::Position, true), "assembly");
+  check_petsc(MatGetDiagonal(sys.matrix(), sys.solution()), "mass diagonal");
+  ModelVector d;
+  check_petsc(sys.to_model(sys.solution(), d), "mass diagonal gather");
+  return 1e-12 * sys.subdomain().max_abs(d.dofs);
+}
+
+Eigen::VectorXd GeneralizedAlpha::corrected_start(const MechanicalState& s, double h) {
+  // Arnold, Brüls & Cardona (2015): a_n approximates q̈(t_n + Δ_α h), Δ_α = α_m − α_f, to O(h²);
+  // a_0 = q̈_0 is O(h) off, which the multipliers carry as an O(h)·ρ∞ⁿ transient. The shifted
+  // value a_0 = q̈_0 + Δ_α h q⃛_0 + O(h²) removes it. q⃛_0 is the forward difference of the
+  // consistent accelerations over one step h: q̈(t_0 + h) at the Taylor state
+  // q = q_0 ∘ exp(h q̇_0 + ½h² q̈_0), q̇ = q̇_0 + h q̈_0 (off the exact solution by O(h³), O(h²),
+  // hence q̈ by O(h²) and q⃛_0 by O(h)), never before t_0 (drivers may start there).
+  MechanicalState ahead = s;
+  ahead.t = s.t + h;
+  lin_.model().retract(ahead.q, h * s.v + 0.5 * h * h * s.qdd);
+  ahead.v = s.v + h * s.qdd;
+  consistent_accelerations(ahead);
+  factored_h_ = 0.0;  // the solve factored another matrix
+  return s.qdd + (p_.alpha_m - p_.alpha_f) * (ahead.qdd - s.qdd);
 }
 
 AssemblyCoefficients GeneralizedAlpha::step_coefficients(double h, const Eigen::VectorXd& increment) const {
@@ -111,6 +162,9 @@ AssemblyCoefficients GeneralizedAlpha::step_coefficients(double h, const Eigen::
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h) { return step(s, h, s.t + h); }
 
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h, double t_next) {
+  // The corrected start: a_0 for this first step's h (again for a retried first step, which the
+  // step loop restores with the h of a set to 0).
+  if (start_pending_ && h_aux_ == 0.0 && s.t == t_start_) a_ = corrected_start(s, h);
   if (variable_ && h_aux_ > 0.0 && h != h_aux_) {
     // a_n − q̈_n ≈ (α_m − α_f) h_old q⃛(t_n) (Arnold & Brüls 2007, a_n ≈ q̈(t_n + (α_m − α_f)h)):
     // scaled by h/h_old it is the shift of the new step (docs/theory/adaptive_steps.md).
@@ -180,6 +234,12 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
   // Modified Newton: whether the S_t factored now belongs to this h and may be used.
   bool fresh = !(allow_reuse && factored_h_ == h);
   double prev_q = 0.0, prev_l = 0.0;  // ‖Δq‖∞, ‖Δλ‖∞ of the previous iteration
+  // The multipliers' own scale (docs/theory/starting_values.md §3): besides ‖λ‖∞, the change of λ
+  // that goes with a change of the coordinates by rtol S_i, Δλ₁/(rtol ρ₁) from a first full iteration
+  // (ρ₁ = max_i |Δq_i|/(atol + rtol S_i)): the test then asks of λ what it asks of q, whatever
+  // β' ~ 1/h² amplifies, and never less than the round-off of q lets λ resolve (at 10 km from the
+  // origin λ wanders by ~1e-7 N on the slider-crank, which a test on ‖λ‖∞ alone cannot pass).
+  double lambda_amplification = 0.0;
   for (int it = 1; it <= nt.max_iterations && !converged; ++it) {
     const bool reuse = allow_reuse && !fresh;
     if (reuse) {
@@ -198,12 +258,18 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
     n1.qdd += beta_p * dq;
     n1.lambda += dl;
 
-    const NewtonRecord rec = newton_record(sub, r, dq, dl);
+    NewtonRecord rec = newton_record(sub, r, dq, dl);
+    scales_.measure(rec, sub, nt, n1.q, dq);
     report.history.push_back(rec);
     report.iterations = it;
     if (!std::isfinite(rec.correction_q) || !std::isfinite(rec.correction_lambda)) break;
+    if (it == 1 && !reuse && rec.q_tolerance_ratio > 0.0 && std::isfinite(rec.q_tolerance_ratio))
+      lambda_amplification = rec.correction_lambda / (nt.rtol * rec.q_tolerance_ratio);
+    // Only after a full Newton iteration, whose error is the next correction, quadratically smaller
+    // than this one; with an old S_t (linear rate θ) the error is θ/(1−θ)‖Δ‖ itself.
+    const double lambda_scale = std::max(sub.max_abs(n1.lambda), reuse ? 0.0 : lambda_amplification);
     if (!reuse) {
-      converged = newton_converged(nt, rec, it, sub.max_abs(n1.q), sub.max_abs(n1.lambda));
+      converged = newton_converged(nt, rec, it, lambda_scale);
     } else if (it > 1) {
       // Linear convergence with the old S_t: test the error estimate θ/(1−θ)‖Δ_k‖ (Hairer &
       // Wanner IV.8.13), θ the larger contraction of q and λ; θ ≥ max_contraction: refactor.
@@ -213,7 +279,9 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
         NewtonRecord estimate = rec;
         estimate.correction_q *= theta / (1.0 - theta);
         estimate.correction_lambda *= theta / (1.0 - theta);
-        converged = newton_converged(nt, estimate, it, sub.max_abs(n1.q), sub.max_abs(n1.lambda));
+        estimate.q_tolerance_ratio *= theta / (1.0 - theta);
+        estimate.q_roundoff_ratio *= theta / (1.0 - theta);
+        converged = newton_converged(nt, estimate, it, lambda_scale);
       }
       if (!converged && theta >= nt.max_contraction) {
         fresh = true;

@@ -146,16 +146,73 @@ NewtonRecord newton_record(const Subdomain& sub, const ModelVector& r, const Eig
   return rec;
 }
 
-bool newton_converged(const NewtonOptions& nt, const NewtonRecord& rec, int iteration, double q_norm, double lambda_norm) {
+NewtonScales NewtonScales::of(const Subdomain& sub) {
+  // L from the whole model's nodes at t = 0 (the same on every rank, no communication): the
+  // diagonal of their bounding box, which a shift of the scene leaves as it is.
+  NewtonScales sc;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Node& n : sub.global_model().nodes()) {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    if (n.kind == NodeKind::LineParticle2D) p.head<2>() = n.line_origin + n.q0[0] * n.line_direction;
+    else if (n.kind == NodeKind::Frame3D) p = n.q0.head<3>();
+    else p.head<2>() = n.q0.head<2>();
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double diagonal = sub.global_model().nodes().empty() ? 0.0 : (hi - lo).norm();
+  sc.model_size = diagonal > 0.0 ? diagonal : 1.0;  // one node, or all at one point: 1 m
+  const Model& m = sub.model();
+  sc.scale = Eigen::VectorXd::Constant(m.num_dofs(), sc.model_size);
+  sc.position.assign(static_cast<size_t>(m.num_dofs()), -1);
+  for (const Node& n : m.nodes())
+    for (int k = 0; k < n.ndof; ++k) {
+      const bool angle = (n.kind == NodeKind::RigidBody2D && k == 2) || (n.kind == NodeKind::Frame3D && k >= 3);
+      if (angle) sc.scale[n.first_dof + k] = 1.0;  // rad
+      else sc.position[static_cast<size_t>(n.first_dof + k)] = n.first_conf + k;
+    }
+  return sc;
+}
+
+void NewtonScales::measure(NewtonRecord& rec, const Subdomain& sub, const NewtonOptions& nt, const Eigen::VectorXd& q,
+                           const Eigen::VectorXd& dq) const {
+  // Round-off floor of unknown i: ε S_i (10⁴ + 64 X/L), X the largest position coordinate |x|.
+  // The first term is the round-off of the linear solve and of the residual relative to the
+  // model's size (the former margin of 10⁴ ulps: at h = 1e-4 on the slider-crank Δλ stalled at
+  // 5e-9 N with Δq at that level); it does not see the origin. The second is the resolution of the
+  // positions themselves, which does: the residual is formed from differences of numbers of size
+  // X, each known to an ulp εX, so lengths are resolved to ~εX and angles (differences over lengths
+  // ~L) to ~εX/L. Measured on the slider-crank shifted by 10 km (X = 1e4 m, L = 0.9 m): once
+  // converged, Δq wanders at 2e-12–1e-11 (m and rad) from one iteration to the next; 64 ulps
+  // (1.6e-10) stay above that and below the corrections of a converging iteration (1e-8 at its
+  // second iteration). At the origin (X ≈ L) the floor is ε S_i (10⁴ + 64), as before.
+  const double eps = std::numeric_limits<double>::epsilon();
+  double x_local = 0.0;
+  for (Eigen::Index i = 0; i < dq.size(); ++i)
+    if (const int c = position[static_cast<size_t>(i)]; c >= 0) x_local = std::max(x_local, std::fabs(q[c]));
+  const double resolution = 1e4 + 64.0 * sub.max_abs(Eigen::VectorXd::Constant(1, x_local)) / model_size;
+  double tol_ratio = 0.0, floor_ratio = 0.0;
+  const double q_norm = nt.step_atol >= 0.0 ? sub.max_abs(q) : 0.0;
+  for (Eigen::Index i = 0; i < dq.size(); ++i) {
+    const double floor = eps * scale[i] * resolution;
+    double tol = nt.atol + nt.rtol * scale[i];
+    // Adaptive steps: a fraction of the local error tolerance (rtol‖q‖∞ + atol, the estimator's own
+    // scale), never below round-off.
+    if (nt.step_atol >= 0.0) tol = std::min(tol, std::max(nt.step_atol + nt.step_rtol * q_norm, floor));
+    tol_ratio = std::max(tol_ratio, std::fabs(dq[i]) / tol);
+    floor_ratio = std::max(floor_ratio, std::fabs(dq[i]) / floor);
+  }
+  // A NaN correction must not compare as converged: max() would drop it.
+  if (!dq.allFinite()) tol_ratio = floor_ratio = std::numeric_limits<double>::infinity();
+  rec.q_tolerance_ratio = sub.max_abs(Eigen::VectorXd::Constant(1, tol_ratio));
+  rec.q_roundoff_ratio = sub.max_abs(Eigen::VectorXd::Constant(1, floor_ratio));
+}
+
+bool newton_converged(const NewtonOptions& nt, const NewtonRecord& rec, int iteration, double lambda_scale) {
   // λ cannot be resolved below the round-off of q amplified by β' ~ 1/(βh²) (the index-3
   // amplification of Arnold & Brüls Sec. 3.3): once Δq is at round-off level, λ is as good as it gets.
-  const double q_scale = std::max(q_norm, 1e-300);
-  const double roundoff = 1e4 * std::numeric_limits<double>::epsilon() * q_scale;
-  double q_tol = nt.atol + nt.rtol * q_scale;
-  if (nt.step_atol >= 0.0) q_tol = std::min(q_tol, std::max(nt.step_atol + nt.step_rtol * q_scale, roundoff));
-  const bool q_converged = rec.correction_q <= q_tol;
-  const bool q_at_roundoff = rec.correction_q <= roundoff;
-  const bool lambda_converged = rec.correction_lambda <= nt.atol_lambda + nt.rtol * lambda_norm;
+  const bool q_converged = rec.q_tolerance_ratio <= 1.0;
+  const bool q_at_roundoff = rec.q_roundoff_ratio <= 1.0;
+  const bool lambda_converged = rec.correction_lambda <= nt.atol_lambda + nt.rtol * lambda_scale;
   return q_converged && (lambda_converged || (iteration > 1 && q_at_roundoff));
 }
 

@@ -19,6 +19,7 @@ bool QuasiStatic::equilibrium(MechanicalState& s, MechanicalState trial, double 
   c.stiffness = 1.0;
   c.load_factor = lf;
   history.clear();
+  const NewtonScales scales = NewtonScales::of(sub);
   for (int it = 1; it <= opt_.newton.max_iterations; ++it) {
     ModelVector x;
     try {
@@ -29,10 +30,11 @@ bool QuasiStatic::equilibrium(MechanicalState& s, MechanicalState trial, double 
     }
     m.retract(trial.q, -x.dofs);
     trial.lambda -= x.multipliers;
-    const NewtonRecord rec = newton_record(sub, r, x.dofs, x.multipliers);
+    NewtonRecord rec = newton_record(sub, r, x.dofs, x.multipliers);
+    scales.measure(rec, sub, opt_.newton, trial.q, x.dofs);
     history.push_back(rec);
     if (!std::isfinite(rec.correction_q) || !std::isfinite(rec.correction_lambda)) return false;
-    if (newton_converged(opt_.newton, rec, it, sub.max_abs(trial.q), sub.max_abs(trial.lambda))) {
+    if (newton_converged(opt_.newton, rec, it, sub.max_abs(trial.lambda))) {
       s = trial;
       return true;
     }

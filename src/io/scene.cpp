@@ -76,7 +76,13 @@ const Schema& solver_schema() {
        "Newton failure policy of a fixed-step dynamic run: 0 stops at the first step whose Newton iteration fails (the paper's fixed-step scheme); N > 0 retries such a step from the same state with h halved, up to N times in a row, and doubles h again (up to `h`) after 4 converged steps. The summary counts the cuts and the smallest h. At each change of h the auxiliary vector a is moved to the new step as with adaptive steps (docs/theory/adaptive_steps.md). Measured on the slider-crank with Newton limited to 3 iterations (tests/unit/test_step_cuts.cpp): u4's error at t_end is 2.0e-2 with 20 cuts at h = 5e-3 (1.97e-2 before the rescaling), 6.5e-3 with fixed h and no failures: halving and doubling h this far from the asymptotic range costs accuracy; for an accuracy, give `tolerance`",
        Range::closed(0, 30)},
       {"scaling", KeyType::Flag, "–", "on", "scale the iteration matrix (dynamic rows × βh², unknown βh²Δλ; Bottasso, Dopico & Trainelli 2006)"},
-      {"consistent_start", KeyType::Flag, "–", "on", "project the initial positions onto Φ = 0 (minimum-norm correction) and the velocities onto Φ_q q̇ + Φ_t = 0 (correction of least kinetic energy) before the first step"},
+      {"consistent_start", KeyType::Flag, "–", "on", "project the initial positions onto Φ = 0 (in the metric of `start_projection`) and the velocities onto Φ_q q̇ + Φ_t = 0 (correction of least kinetic energy) before the first step"},
+      {"start", KeyType::Choice, "–", "`standard`",
+       "starting value of the auxiliary vector a: `standard` a₀ = q̈₀ (Arnold & Brüls 2007); `corrected` a₀ = q̈₀ + (α_m − α_f) h q⃛₀ with q⃛₀ from the accelerations one step ahead (Arnold, Brüls & Cardona 2015), so a₀ matches the shifted time t₀ + (α_m − α_f)h to O(h²). On quick_return the multipliers' start-up transient measured is O(h²)·ρ∞ⁿ with either start, and the corrected start changes it by 0.2–9 % at ρ∞ = 0.5–0.95 (docs/theory/starting_values.md §1)",
+       {}, "", "", {"standard", "corrected"}},
+      {"start_projection", KeyType::Choice, "–", "`mass`",
+       "metric of the consistent start's position projection onto Φ = 0: `mass` min ½Δqᵀ(M + εI)Δq, ε = 1e-12 max diag M (massless points move, bodies stay where they were placed); `minimum-norm` min ½‖Δq‖² (docs/theory/starting_values.md)",
+       {}, "", "", {"mass", "minimum-norm"}},
       {"newton", KeyType::Map, "–", "all defaults", "Newton iteration (`solver.newton`)"},
       {"static", KeyType::Map, "–", "all defaults", "load stepping of a static analysis or of `initial_static` (`solver.static`)"},
       {"linear", KeyType::Map, "–", "all defaults", "the linear solver of each Newton iteration (`solver.linear`)"},
@@ -267,6 +273,8 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
   if (rs.h_min > rs.h_max) rd.fail(s.node("h_min"), "solver.h_min", "exceeds solver.h_max");
   rs.integrator.scaling = s.flag("scaling", rs.integrator.scaling);
   rs.integrator.consistent_start = s.flag("consistent_start", rs.integrator.consistent_start);
+  rs.integrator.start = s.choice("start", 0) == 1 ? StartValues::Corrected : StartValues::Standard;
+  rs.integrator.projection = s.choice("start_projection", 0) == 1 ? StartProjection::MinimumNorm : StartProjection::Mass;
   if (s.has("newton")) {
     const Section n(rd, s.node("newton"), "solver.newton", newton_schema());
     NewtonOptions& o = rs.integrator.newton;

@@ -58,6 +58,7 @@ struct Algorithm1 {
     c.multiplier_scale = 1.0 / (beta * h * h);
     LinearizedSystem lin(sys, solver);
     ModelVector r;
+    double lambda_amplification = 0.0;
     for (int it = 1; it <= opt.newton.max_iterations; ++it) {
       const ModelVector x = lin.solve(n1, c, ConstraintRows::Dynamic, &r);
       const Eigen::VectorXd dq = -x.dofs, dl = -c.multiplier_scale * x.multipliers;
@@ -68,7 +69,9 @@ struct Algorithm1 {
       NewtonRecord rec;
       rec.correction_q = inf_norm(dq);
       rec.correction_lambda = inf_norm(dl);
-      if (newton_converged(opt.newton, rec, it, inf_norm(n1.q), inf_norm(n1.lambda))) break;
+      NewtonScales::of(sys.subdomain()).measure(rec, sys.subdomain(), opt.newton, n1.q, dq);
+      if (it == 1 && rec.q_tolerance_ratio > 0.0) lambda_amplification = rec.correction_lambda / (opt.newton.rtol * rec.q_tolerance_ratio);
+      if (newton_converged(opt.newton, rec, it, std::max(inf_norm(n1.lambda), lambda_amplification))) break;
     }
     a = a_next + (1.0 - af) / (1.0 - am) * n1.qdd;
     s = n1;

@@ -8,11 +8,14 @@
 // unknown of the multiplier rows is βh²Δλ, so that every block of S_t is O(1) and its condition
 // number no longer grows like h⁻⁴ (paper Sec. 3.3 and 5).
 //
-// Newton stopping: on the size of the last correction, ‖Δq‖∞ ≤ atol + rtol‖q‖∞ and
-// ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞. A test on (scaled) residuals alone would stop earlier and earlier
+// Newton stopping: on the size of the last correction, |Δq_i| ≤ atol + rtol S_i (S_i the model's
+// size for a length, 1 rad for an angle: docs/theory/starting_values.md §3) and
+// ‖Δλ‖∞ ≤ atol_λ + rtol Λ, Λ = max(‖λ‖∞, ‖Δλ₁‖∞/(rtol ρ₁)) after a full Newton iteration (ρ₁ the
+// first iteration's max_i |Δq_i|/(atol + rtol S_i): the change of λ that goes with q's tolerance),
+// Λ = ‖λ‖∞ after one with an old S_t. A test on (scaled) residuals alone would stop earlier and earlier
 // as h → 0 (the dynamic residual is multiplied by βh²), and the errors left in Φ(q_n) are
 // amplified by 1/h² in λ (eq. 34), so the order would be lost at small h. The λ test is waived
-// once Δq is at round-off level (≤ 10⁴ ε ‖q‖): λ then carries the round-off of q times
+// once Δq is at round-off level (NewtonScales::measure): λ then carries the round-off of q times
 // β' ~ 1/(βh²), which no further iteration removes.
 //
 // Modified Newton (NewtonOptions::method; by default from NewtonOptions::modified_from unknowns
@@ -35,9 +38,23 @@
 namespace alphaflex {
 
 
+/// How a_0 is chosen (scene key solver.start; docs/theory/starting_values.md).
+enum class StartValues {
+  Standard,   ///< a_0 = q̈_0 (Arnold & Brüls 2007, eq. 3)
+  Corrected,  ///< a_0 = q̈_0 + Δ_α h q⃛_0, Δ_α = α_m − α_f (Arnold, Brüls & Cardona 2015)
+};
+
+/// The metric of the position projection of the consistent start (scene key solver.start_projection).
+enum class StartProjection {
+  MinimumNorm,  ///< min ½‖Δq‖² (every coordinate alike: metres and radians mixed)
+  Mass,         ///< min ½ Δqᵀ(M + εI)Δq, ε = 1e-12 max diag M: massless coordinates move first
+};
+
 struct IntegratorOptions {
   bool scaling = true;           ///< Bottasso et al. scaling of S_t
   bool consistent_start = true;  ///< project q0 and q̇0 onto the constraints
+  StartValues start = StartValues::Standard;
+  StartProjection projection = StartProjection::Mass;
   double load_factor = 1.0;      ///< multiplies every applied load (scene key load.factor)
   NewtonOptions newton;
 };
@@ -59,8 +76,10 @@ class GeneralizedAlpha {
   GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solver, AlphaParameters params,
                    IntegratorOptions options);
 
-  /// Consistent initial conditions (design §3): q0 projected onto Φ = 0, q̇0 onto Φ_q q̇ = −Φ_t,
-  /// then [[M, Φ_qᵀ],[Φ_q, 0]] [q̈0; λ0] = [g; −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt] and a_0 = q̈0.
+  /// Consistent initial conditions (design §3): q0 projected onto Φ = 0 (in the metric of
+  /// IntegratorOptions::projection), q̇0 onto Φ_q q̇ = −Φ_t,
+  /// then [[M, Φ_qᵀ],[Φ_q, 0]] [q̈0; λ0] = [g; −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt] and a_0 = q̈0
+  /// (StartValues::Corrected: the first step sets a_0 = q̈_0 + Δ_α h q⃛_0 with its own h).
   /// Returns the largest change made to q0 by the projection.
   double initialize(MechanicalState& s);
 
@@ -113,6 +132,7 @@ class GeneralizedAlpha {
 
  private:
   LinearizedSystem lin_;
+  NewtonScales scales_;
   AlphaParameters p_;
   IntegratorOptions opt_;
   Eigen::VectorXd a_;
@@ -121,6 +141,17 @@ class GeneralizedAlpha {
   double h_aux_ = 0.0;       ///< the h a_ belongs to
   bool variable_ = false, estimate_ = false;
   long reused_ = 0, refreshes_ = 0;
+  /// StartValues::Corrected: the start time, and the state q0, q̇0, q̈0 of the consistent start
+  /// (the first step of size h from it sets a_0 = q̈_0 + Δ_α (q̈(t_0 + h) − q̈_0)).
+  bool start_pending_ = false;
+  double t_start_ = 0.0;
+
+  /// q̈ and λ of the index-1 system [[M, Φ_qᵀ],[Φ_q, 0]] [q̈; λ] = [g; −c] at (q, q̇, t) of `s`.
+  void consistent_accelerations(MechanicalState& s);
+  /// The corrected a_0 for a first step of size h (StartValues::Corrected).
+  Eigen::VectorXd corrected_start(const MechanicalState& s, double h);
+  /// W = M + εI of the mass-weighted projection: ε (0 when the model has no mass at all).
+  double projection_regularisation(const MechanicalState& s);
 
   StepReport step_at(MechanicalState& s, double h, double t_next);
   StepReport try_step(MechanicalState& s, double h, double t_next, bool allow_reuse, bool& used_old_matrix);

@@ -46,17 +46,34 @@ struct NewtonRecord {
   double residual_dynamic = 0.0;     ///< ‖r_q‖₂ as assembled (scaled by βh² when scaling is on)
   double residual_constraint = 0.0;  ///< ‖Φ‖₂ (m, rad)
   double correction_q = 0.0, correction_lambda = 0.0;  ///< ‖Δq‖∞, ‖Δλ‖∞
+  /// max_i |Δq_i|/(atol + rtol S_i) and max_i |Δq_i|/floor_i over all ranks (NewtonScales::measure):
+  /// ≤ 1 when the coordinates are converged, at round-off.
+  double q_tolerance_ratio = 0.0, q_roundoff_ratio = 0.0;
+};
+
+/// Per-unknown scales of Newton's test (docs/theory/starting_values.md §3), so that it neither mixes
+/// metres and radians nor depends on where the origin is: S_i = L, the model's size (diagonal of
+/// the bounding box of the nodes at t = 0; 1 m if they coincide), for a length, 1 rad for an angle.
+struct NewtonScales {
+  Eigen::VectorXd scale;       ///< S_i of every local unknown (m or rad)
+  std::vector<int> position;   ///< the configuration number of unknown i if it is a position, else −1
+  double model_size = 1.0;     ///< L (m)
+  static NewtonScales of(const Subdomain& sub);
+  /// Sets rec.q_tolerance_ratio and rec.q_roundoff_ratio for the correction dq at q (collective;
+  /// the round-off floor is explained in linearized_system.cpp).
+  void measure(NewtonRecord& rec, const Subdomain& sub, const NewtonOptions& options, const Eigen::VectorXd& q,
+               const Eigen::VectorXd& dq) const;
 };
 
 /// The record of one Newton iteration from the local residual and corrections, with norms over
 /// all ranks (collective): ‖r_q‖₂ over owned coordinates, ‖Φ‖₂, ‖Δq‖∞, ‖Δλ‖∞.
 NewtonRecord newton_record(const Subdomain& sub, const ModelVector& residual, const Eigen::VectorXd& dq,
                            const Eigen::VectorXd& dlambda);
-/// The Newton stopping rule on the last correction (generalized_alpha.hpp explains why):
-/// ‖Δq‖∞ ≤ atol + rtol‖q‖∞ and ‖Δλ‖∞ ≤ atol_λ + rtol‖λ‖∞, the λ test waived once Δq is at
-/// round-off (≤ 10⁴ ε ‖q‖) after the first iteration.
-bool newton_converged(const NewtonOptions& options, const NewtonRecord& last, int iteration, double q_norm,
-                      double lambda_norm);
+/// The Newton stopping rule on the last correction (generalized_alpha.hpp explains why), on the
+/// scales of NewtonScales: |Δq_i| ≤ atol + rtol S_i for every unknown and ‖Δλ‖∞ ≤ atol_λ + rtol Λ
+/// (Λ = `lambda_scale`, the multipliers' scale: ‖λ‖∞, or more, generalized_alpha.hpp), the λ test
+/// waived once Δq is at round-off (NewtonScales::measure) after the first iteration.
+bool newton_converged(const NewtonOptions& options, const NewtonRecord& last, int iteration, double lambda_scale);
 /// The aligned table of a Newton history printed when it fails.
 std::string format_newton_history(const std::vector<NewtonRecord>& history, bool scaled);
 
