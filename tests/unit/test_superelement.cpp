@@ -17,6 +17,10 @@
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
 #include "alphaflex/elements/reduced_body.hpp"
 #include "alphaflex/elements/spatial_elements.hpp"
+#include "alphaflex/integrators/generalized_alpha.hpp"
+#include "alphaflex/partition/subdomain.hpp"
+#include "alphaflex/solvers/linear_solver.hpp"
+#include "alphaflex/assembly/saddle_point_system.hpp"
 #include "alphaflex/modal/superelement.hpp"
 #include "test_support.hpp"
 #include "alphaflex/model/model.hpp"
@@ -354,6 +358,68 @@ TEST(ReducedBody, WithoutModesAndFrameAtTheCentreOfMassIsTheRigidBody) {
   }
 }
 
+
+
+// The element in the Lie-group generalized-α (Brüls, Cardona & Arnold 2012) with its frame node
+// and one-unknown amplitude nodes: a free flexible bar (frame at one end, the other end's 6
+// constraint modes and 2 fixed-interface modes) tumbling and vibrating without gravity. The
+// continuous system conserves energy and linear and angular momentum; with ρ∞ = 1 (no numerical
+// dissipation) and h = 1e-4 s over 0.05 s the discrete drifts measured ~1e-6 (printed); the
+// tolerance is 10× that.
+TEST(ReducedBody, FreeTumblingBarConservesEnergyAndMomentaInGeneralizedAlpha) {
+  const ReducedBar rb(2, 4);
+  const int m = rb.rb.matrices.elastic();
+  Model model;
+  Node f = rb.bar.model.node(0);
+  f.v0 = VectorXd::Zero(6);
+  f.v0 << 0.3, -0.2, 0.1, 1.0, 4.0, -2.0;
+  model.add_node(f);
+  std::vector<int> coords;
+  for (int i = 0; i < m; ++i) {
+    Node c;
+    c.name = "xi" + std::to_string(i);
+    c.kind = NodeKind::LineParticle2D;
+    c.ndof = c.nconf = 1;
+    c.q0 = VectorXd::Zero(1);
+    c.v0 = VectorXd::Constant(1, i == 6 ? 0.05 : 0.0);  // the first normal mode vibrates
+    coords.push_back(model.add_node(c));
+  }
+  model.add_element(std::make_unique<ReducedBody>("link", 0, coords, rb.rb.matrices, Vector3d::Zero()));
+  const ReducedBodyMatrices& d = rb.rb.matrices;
+  auto invariants = [&](const MechanicalState& s, double& energy, Vector3d& p, Vector3d& L) {
+    const Pose<double> F = pose_of(s.q.data());
+    VectorXd xi(m), w(6 + m);
+    for (int i = 0; i < m; ++i) xi[i] = s.q[7 + i];
+    w << F.R.transpose() * s.v.head<3>(), s.v.segment<3>(3), s.v.tail(m);
+    const VectorXd h = d.mass_matrix(xi) * w;
+    energy = 0.5 * w.dot(h) + 0.5 * xi.dot(d.K * xi);
+    p = F.R * h.head<3>();
+    L = F.x.cross(p) + F.R * h.segment<3>(3);
+  };
+  Subdomain sub(model, PETSC_COMM_SELF);
+  SaddlePointSystem sys(sub);
+  LinearSolver solver(PETSC_COMM_SELF);
+  IntegratorOptions opt;
+  opt.newton.rtol = 1e-12;
+  GeneralizedAlpha ga(sys, solver, AlphaParameters::from_rho_inf(1.0), opt);
+  MechanicalState s = model.initial_state();
+  ga.initialize(s);
+  double e0, e;
+  Vector3d p0, L0, p, L;
+  invariants(s, e0, p0, L0);
+  double de = 0.0, dp = 0.0, dL = 0.0;
+  for (int n = 0; n < 500; ++n) {
+    ga.step(s, 1e-4);
+    invariants(s, e, p, L);
+    de = std::max(de, std::fabs(e - e0) / e0);
+    dp = std::max(dp, (p - p0).norm() / p0.norm());
+    dL = std::max(dL, (L - L0).norm() / L0.norm());
+  }
+  std::printf("free tumbling reduced bar: relative drifts energy %.2e, momentum %.2e, angular momentum %.2e\n", de, dp, dL);
+  EXPECT_LT(de, 1e-5);
+  EXPECT_LT(dp, 1e-5);
+  EXPECT_LT(dL, 1e-5);
+}
 
 }  // namespace
 }  // namespace alphaflex
