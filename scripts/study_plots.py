@@ -16,6 +16,7 @@ Writes next to the CSV, by the study's mode:
 """
 import math
 import os
+import re
 import sys
 import textwrap
 
@@ -388,17 +389,31 @@ def fidelity(csv_path, comments, rows, base):
     names = error_names(rows)
     ref = next((c for c in comments if c.startswith("reference:")), "")
     fig, ax = plt.subplots(1, 2, figsize=(12, 4.6))
+    # err_max (the max over the sensors) bold, with every variant's label; the tolerance of the
+    # recommendation as a line, the recommended variant ringed (a reference's error 0 is off a log axis).
+    names = [en for en in names if en != "max"] + (["max"] if "max" in names else [])
     for k, en in enumerate(names):
         pts = [(f(r["cpu"]), f(r["err_" + en]), r["label"]) for r in rows]
         xs = [p[0] for p in pts if p[1] > 0]
         ys = [p[1] for p in pts if p[1] > 0]
-        ax[0].loglog(xs, ys, marker=MARKERS[k % len(MARKERS)], ls="none", ms=7, label=en)
-        if k == 0:
+        bold = en == "max"
+        ax[0].loglog(xs, ys, marker="o" if bold else MARKERS[k % len(MARKERS)], ls="-" if bold else "none",
+                     color="k" if bold else None, ms=7 if bold else 5, lw=1.4,
+                     label="max over the sensors" if bold else en)
+        if bold or (k == 0 and "max" not in names):
             for p in pts:
                 if p[1] > 0:
                     ax[0].annotate(p[2], (p[0], p[1]), fontsize=7, xytext=(3, 3), textcoords="offset points")
-    ax[0].set(xlabel="CPU time (s)", ylabel="max over t of |difference| / max |reference|",
-              title="sensor difference to the reference variant vs cost")
+    rec = next((c for c in comments if c.startswith("recommendation:")), "")
+    m = re.search(r"tolerance ([0-9.eE+-]+)", rec)
+    if m:
+        ax[0].axhline(float(m.group(1)), color="tab:red", ls=":", lw=1.2, label=f"tolerance {m.group(1)}")
+        for r in rows:
+            if r.get("recommended") == "1" and f(r.get("err_max", "nan")) > 0:
+                ax[0].plot([f(r["cpu"])], [f(r["err_max"])], "o", ms=14, mfc="none", mec="tab:red",
+                           label=f"recommended: {r['label']}")
+    ax[0].set(xlabel="CPU time (s)", ylabel="max over t of |difference| / range of the reference",
+              title="difference to the reference variant vs cost")
     grid_and_legend(ax[0])
     epath = base + "_energy.csv"
     if os.path.exists(epath):

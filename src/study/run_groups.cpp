@@ -191,6 +191,13 @@ std::string pack(const std::vector<RunOutcome>& outcomes) {
     w.put(o.final_sensors);
     w.put(o.final_state.t);
     w.put(o.final_state.q), w.put(o.final_state.v), w.put(o.final_state.qdd), w.put(o.final_state.lambda);
+    w.put(o.times);
+    w.put(static_cast<long>(o.histories.size()));
+    for (const auto& h : o.histories) w.put(h);
+    w.put(static_cast<long>(o.energy.size()));
+    for (const auto& e : o.energy)
+      w.put(e.variant), w.put(e.part), w.put(e.kind), w.put(e.elements), w.put(e.mean), w.put(e.peak), w.put(e.share_mean),
+          w.put(e.share_peak);
     w.put(o.error_code);
     w.put(o.error);
   }
@@ -228,6 +235,15 @@ std::vector<RunOutcome> unpack(const std::string& bytes) {
     r.get(o.final_sensors);
     r.get(o.final_state.t);
     r.get(o.final_state.q), r.get(o.final_state.v), r.get(o.final_state.qdd), r.get(o.final_state.lambda);
+    r.get(o.times);
+    r.get(m);
+    o.histories.resize(static_cast<size_t>(m));
+    for (auto& h : o.histories) r.get(h);
+    r.get(m);
+    o.energy.resize(static_cast<size_t>(m));
+    for (auto& e : o.energy)
+      r.get(e.variant), r.get(e.part), r.get(e.kind), r.get(e.elements), r.get(e.mean), r.get(e.peak), r.get(e.share_mean),
+          r.get(e.share_peak);
     r.get(o.error_code);
     r.get(o.error);
     out.push_back(std::move(o));

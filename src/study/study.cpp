@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -16,6 +17,8 @@
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/io/scene.hpp"
+#include "alphaflex/io/sensor_schedule.hpp"
+#include "alphaflex/study/fidelity_ladder.hpp"
 #include "alphaflex/study/andrews_ida.hpp"
 #include "alphaflex/study/cpu_time.hpp"
 #include "alphaflex/study/iteration_matrix.hpp"
@@ -226,6 +229,7 @@ class Study {
       case StudyMode::Fidelity: fidelity(); break;
     }
     write_outputs();
+    if (!fatal_.empty()) throw SolverError(fatal_);
     return res_;
   }
 
@@ -297,12 +301,24 @@ class Study {
   void check_settings() {
     const double h = spec_.h.empty() ? 0.0 : spec_.h.front();
     if (spec_.mode == StudyMode::Fidelity) {
-      for (const auto& v : spec_.variants) {
-        SchemeSetting vs = spec_.settings.front();
-        vs.overrides.insert(vs.overrides.end(), v.overrides.begin(), v.overrides.end());
-        vs.where = v.where;
-        scene_for(vs, h, v.scene);
-      }
+      // The reference variant only: every error is measured against it. Another variant that
+      // cannot be built (a key this build does not know, bad overrides) is a failed row.
+      for (const auto& v : spec_.variants)
+        if (v.label == spec_.reference_variant) {
+          const Scene sc = scene_for(variant_setting(v), h, v.scene);
+          reference_unknowns_ = sc.model->num_dofs() + sc.model->num_multipliers();
+          for (const auto& s : spec_.sensors) {
+            std::string names;
+            bool found = false;
+            for (const auto& sn : sc.model->sensors()) {
+              names += (names.empty() ? "" : ", ") + sn.name;
+              found = found || sn.name == s;
+            }
+            if (!found)
+              throw InputError(spec_.file + ": study.sensors: the reference variant's scene " + v.scene +
+                               " has no sensor named '" + s + "' (its sensors: " + names + ")");
+          }
+        }
       return;
     }
     for (const auto& st : spec_.settings) scene_for(st, h);
@@ -497,10 +513,20 @@ class Study {
   /// take runs: the groups end together whatever the runs and the peers cost. Else each group runs
   /// its share by LPT and rank 0 runs the peers afterwards (convergence()).
   std::vector<RunOutcome> run_concurrently(const std::vector<ConvergenceRun>& runs, int k, double t_end) {
-    RunGroups groups(comm_, k);
     std::vector<double> cost;
     for (const auto& r : runs) cost.push_back(t_end / r.h);
-    std::vector<size_t> order(runs.size());
+    return run_tasks(cost, k, [&](size_t i, MPI_Comm comm) { return run_on_group(runs[i], comm); },
+                     !runs.empty() && runs[0].reference, t_end);
+  }
+
+  /// Tasks 0..n-1 (`run(i, group communicator)`, estimated costs `cost`) on groups of k ranks, as
+  /// run_concurrently describes; `first_is_reference`: a failed task 0 stops its group (the others'
+  /// errors need it).
+  std::vector<RunOutcome> run_tasks(const std::vector<double>& cost, int k,
+                                    const std::function<RunOutcome(size_t, MPI_Comm)>& run, bool first_is_reference,
+                                    double t_end) {
+    RunGroups groups(comm_, k);
+    std::vector<size_t> order(cost.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost[a] > cost[b]; });
     const std::vector<int> group = groups.assign(cost);
@@ -515,16 +541,16 @@ class Study {
         while (n < order.size() && group[order[n]] != groups.group()) ++n;
         i = n < order.size() ? order[n] : order.size();
       }
-      if (i >= runs.size()) break;
+      if (i >= cost.size()) break;
       if (groups.shares_a_counter()) i = order[i];
-      RunOutcome o = run_on_group(runs[i], groups.group_comm());
+      RunOutcome o = run(i, groups.group_comm());
       o.task = static_cast<int>(i);
-      const bool stop = o.error_code != 0 || (runs[i].reference && !o.row.ok);  // the others' errors need the reference
+      const bool stop = o.error_code != 0 || (first_is_reference && i == 0 && !o.row.ok);
       mine.push_back(std::move(o));
       if (stop) break;
     }
-    std::vector<RunOutcome> all(runs.size());
-    std::vector<bool> have(runs.size(), false);
+    std::vector<RunOutcome> all(cost.size());
+    std::vector<bool> have(cost.size(), false);
     for (const std::string& bytes : groups.allgather(groups.leads_group() ? pack(mine) : std::string()))
       for (RunOutcome& o : unpack(bytes)) {
         have[static_cast<size_t>(o.task)] = true;
@@ -533,8 +559,8 @@ class Study {
     for (size_t i = 0; i < all.size(); ++i)
       if (have[i] && all[i].error_code != 0) rethrow(all[i]);
     for (size_t i = 0; i < all.size(); ++i)
-      if (!have[i] && !(runs[0].reference && !all[0].row.ok))
-        throw std::logic_error("study: run " + std::to_string(i) + " of the convergence study has no outcome");
+      if (!have[i] && !(first_is_reference && !all[0].row.ok))
+        throw std::logic_error("study: run " + std::to_string(i) + " of the study has no outcome");
     return all;
   }
 
@@ -902,119 +928,199 @@ class Study {
       }
   }
 
-  void fidelity() {
-    const SchemeSetting& st = spec_.settings.front();
-    const double h = spec_.h.empty() ? 0.0 : spec_.h.front();
-    struct VariantRun {
-      const ModelVariant* v;
-      RunRecord rec;
-      std::vector<FlexiblePart> parts;
-      std::vector<std::string> sensor_names;
-      int unknowns = 0;
-      StudyRow row;
-    };
-    std::vector<VariantRun> runs;
-    say("study " + spec_.name + ": fidelity, " + std::to_string(spec_.variants.size()) + " model variants");
-    for (const auto& v : spec_.variants) {
-      SchemeSetting vs = st;
-      vs.overrides.insert(vs.overrides.end(), v.overrides.begin(), v.overrides.end());
-      vs.where = v.where;
-      vs.label = v.label;
-      Scene sc = scene_for(vs, h, v.scene);
-      VariantRun vr{&v, {}, flexible_parts(*sc.model), {}, 0, {}};
-      for (const auto& sn : sc.model->sensors()) vr.sensor_names.push_back(sn.name);
+  /// The setting of a fidelity variant: the study's one setting with the variant's overrides.
+  SchemeSetting variant_setting(const ModelVariant& v) const {
+    SchemeSetting vs = spec_.settings.front();
+    vs.overrides.insert(vs.overrides.end(), v.overrides.begin(), v.overrides.end());
+    vs.where = v.where;
+    vs.label = v.label;
+    return vs;
+  }
+
+  /// One fidelity variant on the group communicator `comm`: its row, its sensors' histories at the
+  /// output times (the rows NAME.csv would have: every step, or output.sensors_dt) and the strain
+  /// energy of its flexible parts. A variant that cannot be built or whose run fails is a failed
+  /// row with the message.
+  RunOutcome fidelity_run(const ModelVariant& v, double h, MPI_Comm comm) {
+    RunOutcome o;
+    const SchemeSetting vs = variant_setting(v);
+    o.row.label = v.label;
+    try {
+      Scene sc = scene_for(vs, h, v.scene, comm);
+      const std::vector<FlexiblePart> parts = flexible_parts(*sc.model);
       RunNeeds needs;
-      needs.parts = &vr.parts;
+      needs.parts = &parts;
       needs.sensors = true;
-      vr.rec = run_one(sc, needs, comm_);
-      vr.row = row_for(sc, vs, sc.settings.h, vr.rec);
-      vr.unknowns = vr.rec.summary.unknowns;
-      if (!vr.rec.ok) throw SolverError(v.where + ": the run of this model variant failed: " + vr.rec.failure);
-      runs.push_back(std::move(vr));
+      RunRecord rec = run_one(sc, needs, comm);
+      o.row = row_for(sc, vs, sc.settings.h, rec);
+      o.row.extra.emplace_back("unknowns", rec.summary.unknowns > 0 ? rec.summary.unknowns
+                                                                     : sc.model->num_dofs() + sc.model->num_multipliers());
+      for (const auto& sn : sc.model->sensors()) o.sensor_names.push_back(sn.name);
+      o.histories.resize(o.sensor_names.size());
+      SensorSchedule rows(true, sc.settings.sensors_dt, rec.t.empty() ? 0.0 : rec.t.front(), true);
+      for (size_t n = 0; n < rec.t.size(); ++n) {
+        if (!rows.due(rec.t[n], n + 1 == rec.t.size())) continue;
+        o.times.push_back(rec.t[n]);
+        for (size_t k = 0; k < o.histories.size(); ++k) o.histories[k].push_back(rec.sensors[n][k]);
+      }
+      if (rec.ok) o.energy = energy_rows(v.label, parts, rec.t, rec.energy);
+    } catch (const InputError& e) {
+      o.row.ok = false;
+      o.row.t_end = kNaN;
+      o.row.failure = e.what();
+    } catch (const SolverError& e) {
+      o.row.ok = false;
+      o.row.failure = e.what();
+    } catch (const std::exception& e) {
+      o.error_code = exit_code_of(e);
+      o.error = e.what();
     }
-    // Sensors: those asked, or those every variant has.
+    return o;
+  }
+
+  /// Strain energy per part: time average (trapezoid over the steps), peak, shares.
+  static std::vector<EnergyRow> energy_rows(const std::string& variant, const std::vector<FlexiblePart>& parts,
+                                            const std::vector<double>& t, const std::vector<std::vector<double>>& energy) {
+    std::vector<EnergyRow> out;
+    const size_t np = parts.size();
+    if (t.size() < 2) return out;
+    std::vector<double> mean(np, 0.0), peak(np, 0.0);
+    size_t ipeak = 0;
+    double total_peak = -1.0;
+    for (size_t n = 0; n < t.size(); ++n) {
+      double total = 0.0;
+      for (size_t p = 0; p < np; ++p) {
+        peak[p] = std::max(peak[p], energy[n][p]);
+        total += energy[n][p];
+        if (n > 0) mean[p] += 0.5 * (energy[n][p] + energy[n - 1][p]) * (t[n] - t[n - 1]);
+      }
+      if (total > total_peak) {
+        total_peak = total;
+        ipeak = n;
+      }
+    }
+    const double span = t.back() - t.front();
+    double sum_mean = 0.0;
+    for (size_t p = 0; p < np; ++p) sum_mean += (mean[p] /= span);
+    for (size_t p = 0; p < np; ++p) {
+      EnergyRow e;
+      e.variant = variant;
+      e.part = parts[p].name;
+      e.kind = parts[p].kind;
+      e.elements = static_cast<int>(parts[p].elements.size());
+      e.mean = mean[p];
+      e.peak = peak[p];
+      e.share_mean = sum_mean > 0 ? mean[p] / sum_mean : kNaN;
+      e.share_peak = total_peak > 0 ? energy[ipeak][p] / total_peak : kNaN;
+      out.push_back(e);
+    }
+    return out;
+  }
+
+  void fidelity() {
+    const double h = spec_.h.empty() ? 0.0 : spec_.h.front();
+    const int k = opt_.ranks_per_run > 0 ? opt_.ranks_per_run : default_ranks_per_run(reference_unknowns_, size_);
+    const std::string problem = ranks_per_run_problem(k, size_);
+    if (!problem.empty()) throw InputError(problem);  // the command line checks it first (exit 2)
+    run_ranks_ = k;
+    std::ostringstream groups;
+    if (size_ > k) groups << ", " << size_ / k << " runs at a time on " << k << " rank(s) each";
+    say("study " + spec_.name + ": fidelity, " + std::to_string(spec_.variants.size()) +
+        (spec_.ladder ? " rungs of the ladder" : " model variants") + groups.str());
+    // Cost estimate for the order of the runs: the reference (the most detailed model) first.
+    std::vector<double> cost;
+    size_t iref = 0;
+    for (size_t i = 0; i < spec_.variants.size(); ++i) {
+      const bool is_ref = spec_.variants[i].label == spec_.reference_variant;
+      if (is_ref) iref = i;
+      cost.push_back(is_ref ? 2.0 : 1.0);
+    }
+    std::vector<RunOutcome> runs = run_tasks(
+        cost, k, [&](size_t i, MPI_Comm comm) { return fidelity_run(spec_.variants[i], h, comm); }, false, 0.0);
+    const RunOutcome& ref = runs[iref];
+    const ModelVariant& refv = spec_.variants[iref];
+    res_.reference_label = "model variant '" + refv.label + "' (" + refv.scene + ")";
+    if (!ref.row.ok)
+      fatal_ = "the reference variant '" + refv.label + "' failed, so no error can be measured: " + ref.row.failure;
+    // Sensors: those asked (each in the reference), or those the reference and every variant that
+    // ran have (a rigid scene may lack a flexible part's sensors).
     if (!spec_.sensors.empty()) {
       sensors_ = spec_.sensors;
     } else {
-      for (const auto& n : runs.front().sensor_names) {
+      for (const auto& n : ref.sensor_names) {
         bool all = true;
-        for (const auto& r : runs) all = all && std::count(r.sensor_names.begin(), r.sensor_names.end(), n);
+        for (const auto& r : runs) all = all && (!r.row.ok || std::count(r.sensor_names.begin(), r.sensor_names.end(), n));
         if (all) sensors_.push_back(n);
       }
     }
-    for (const auto& r : runs)
-      for (const auto& s : sensors_)
-        if (!std::count(r.sensor_names.begin(), r.sensor_names.end(), s))
-          throw InputError(r.v->where + ": the variant's scene has no sensor named '" + s + "' (study.sensors)");
-    const VariantRun* ref = nullptr;
-    for (const auto& r : runs)
-      if (r.v->label == spec_.reference_variant) ref = &r;
-    res_.reference_label = "model variant '" + ref->v->label + "' (" + ref->v->scene + ")";
-    auto column = [](const VariantRun& r, const std::string& s) {
-      const size_t k = static_cast<size_t>(std::find(r.sensor_names.begin(), r.sensor_names.end(), s) - r.sensor_names.begin());
-      std::vector<double> x;
-      for (const auto& v : r.rec.sensors) x.push_back(v[k]);
-      return x;
+    res_.error_names = sensors_;
+    res_.error_names.push_back("max");
+    const bool relative = spec_.relative_errors;
+    auto history = [](const RunOutcome& r, const std::string& s) -> const std::vector<double>* {
+      const auto it = std::find(r.sensor_names.begin(), r.sensor_names.end(), s);
+      return it == r.sensor_names.end() ? nullptr : &r.histories[static_cast<size_t>(it - r.sensor_names.begin())];
     };
-    for (auto& r : runs) {
-      if (r.rec.t.size() != ref->rec.t.size())
-        throw InputError(r.v->where + ": its run has " + std::to_string(r.rec.t.size() - 1) + " steps, the reference variant " +
-                         std::to_string(ref->rec.t.size() - 1) + ": give every variant the same h and t_end");
-      for (const auto& s : sensors_) {
-        const std::vector<double> x = column(r, s), xr = column(*ref, s);
-        double dmax = 0.0, scale = 0.0;
-        for (size_t i = 0; i < x.size(); ++i) {
-          dmax = std::max(dmax, std::fabs(x[i] - xr[i]));
-          scale = std::max(scale, std::fabs(xr[i]));
+    for (size_t i = 0; i < runs.size(); ++i) {
+      StudyRow& row = runs[i].row;
+      const RunOutcome& r = runs[i];
+      if (row.ok && ref.row.ok) {
+        // The error: per sensor max over the reference's output times of |x − x_ref| over the
+        // sensor's range in the reference run (fidelity_ladder.hpp), then the max over the sensors.
+        std::string why;
+        const std::vector<size_t> at = matching_times(r.times, ref.times, why);
+        double worst = 0.0;
+        for (const auto& s : sensors_) {
+          const std::vector<double>* x = history(r, s);
+          if (!x) {
+            why = "the variant's scene has no sensor named '" + s + "' (study.sensors)";
+            break;
+          }
+          if (at.empty()) break;
+          std::vector<double> xs;
+          for (size_t j : at) xs.push_back((*x)[j]);
+          const std::vector<double>& xr = *history(ref, s);
+          const double e = history_error(xs, xr, relative);
+          row.errors[s] = e;
+          worst = std::isnan(e) || std::isnan(worst) ? kNaN : std::max(worst, e);
+          double lo = xr.empty() ? 0.0 : *std::min_element(xr.begin(), xr.end());
+          double hi = xr.empty() ? 0.0 : *std::max_element(xr.begin(), xr.end());
+          if (relative && !(hi > lo) && i == iref)
+            warn("sensor '" + s + "' is constant in the reference run: its error is the absolute difference");
         }
-        r.row.errors[s] = spec_.relative_errors && scale > 0 ? dmax / scale : dmax;
-      }
-      r.row.extra.emplace_back("unknowns", r.unknowns);
-      r.row.extra.emplace_back("cpu_ratio", r.rec.cpu / ref->rec.cpu);
-      // Strain energy per part: time average (trapezoid over the steps), peak, shares.
-      const auto& t = r.rec.t;
-      const size_t np = r.parts.size();
-      std::vector<double> mean(np, 0.0), peak(np, 0.0);
-      size_t ipeak = 0;
-      double total_peak = -1.0;
-      for (size_t n = 0; n < t.size(); ++n) {
-        double total = 0.0;
-        for (size_t p = 0; p < np; ++p) {
-          peak[p] = std::max(peak[p], r.rec.energy[n][p]);
-          total += r.rec.energy[n][p];
-          if (n > 0) mean[p] += 0.5 * (r.rec.energy[n][p] + r.rec.energy[n - 1][p]) * (t[n] - t[n - 1]);
-        }
-        if (total > total_peak) {
-          total_peak = total;
-          ipeak = n;
+        if (why.empty()) {
+          row.errors["max"] = worst;
+        } else {
+          row.errors.clear();
+          row.ok = false;
+          row.failure = "no error measured: " + why;
         }
       }
-      const double span = t.back() - t.front();
-      double sum_mean = 0.0;
-      for (size_t p = 0; p < np; ++p) sum_mean += (mean[p] /= span);
-      for (size_t p = 0; p < np; ++p) {
-        EnergyRow e;
-        e.variant = r.v->label;
-        e.part = r.parts[p].name;
-        e.kind = r.parts[p].kind;
-        e.elements = static_cast<int>(r.parts[p].elements.size());
-        e.mean = mean[p];
-        e.peak = peak[p];
-        e.share_mean = sum_mean > 0 ? mean[p] / sum_mean : kNaN;
-        e.share_peak = total_peak > 0 ? r.rec.energy[ipeak][p] / total_peak : kNaN;
-        res_.energy.push_back(e);
+      row.extra.emplace_back("cpu_ratio", r.row.steps > 0 && ref.row.ok && ref.row.cpu > 0.0 ? r.row.cpu / ref.row.cpu : kNaN);
+      for (const auto& e : r.energy) res_.energy.push_back(e);
+    }
+    if (spec_.tolerance > 0.0 && ref.row.ok) {
+      std::vector<Rung> rungs;
+      for (const auto& r : runs) rungs.push_back({r.row.label, r.row.ok, r.row.cpu, r.row.ok ? r.row.errors.at("max") : kNaN});
+      const Recommendation rec = recommend(rungs, spec_.tolerance);
+      for (size_t i = 0; i < runs.size(); ++i) {
+        runs[i].row.extra.emplace_back("acceptable", rec.acceptable[i] ? 1.0 : 0.0);
+        runs[i].row.extra.emplace_back("recommended", static_cast<int>(i) == rec.lightest ? 1.0 : 0.0);
       }
-      res_.error_names = sensors_;
+      res_.recommendation = rec.text;
+      res_.recommended = rec.lightest >= 0 ? runs[static_cast<size_t>(rec.lightest)].row.label : "";
+      res_.acceptable_from = rec.acceptable_from >= 0 ? runs[static_cast<size_t>(rec.acceptable_from)].row.label : "";
+    }
+    for (const auto& r : runs) {
       print_row(r.row);
       if (opt_.verbose && rank_ == 0)
-        for (const auto& e : res_.energy)
-          if (e.variant == r.v->label)
-            std::cout << "      strain energy of " << e.kind << " '" << e.part << "' (" << e.elements
-                      << " elements): mean " << sci(e.mean) << " J, peak " << sci(e.peak) << " J, share "
-                      << std::fixed << std::setprecision(1) << 100.0 * e.share_mean << " % of the mean, "
-                      << 100.0 * e.share_peak << " % at the peak" << std::defaultfloat << std::endl;
+        for (const auto& e : r.energy)
+          std::cout << "      strain energy of " << e.kind << " '" << e.part << "' (" << e.elements
+                    << " elements): mean " << sci(e.mean) << " J, peak " << sci(e.peak) << " J, share "
+                    << std::fixed << std::setprecision(1) << 100.0 * e.share_mean << " % of the mean, "
+                    << 100.0 * e.share_peak << " % at the peak" << std::defaultfloat << std::endl;
       res_.rows.push_back(r.row);
     }
+    if (!res_.recommendation.empty()) say("recommendation: " + res_.recommendation);
   }
 
   // ------------------------------------------------------------------ output
@@ -1061,8 +1167,14 @@ class Study {
     f << "# alphaflex study " << spec_.name << ": mode " << mode_name(spec_.mode) << ", scene " << spec_.scene
       << ", study " << spec_.file << "\n";
     f << "# reference: " << res_.reference_label << "\n";
-    f << "# errors: " << (spec_.relative_errors ? "relative" : "absolute")
-      << " at t_end (err_q, err_v, err_lambda: infinity norms of the state against the reference run)\n";
+    if (spec_.mode != StudyMode::Fidelity)
+      f << "# errors: " << (spec_.relative_errors ? "relative" : "absolute")
+        << " at t_end (err_q, err_v, err_lambda: infinity norms of the state against the reference run)\n";
+    if (spec_.mode == StudyMode::Fidelity)
+      f << "# fidelity errors: per sensor the max over the reference's output times of |variant - reference|"
+        << (spec_.relative_errors ? " / the sensor's range (max - min) in the reference run" : "")
+        << "; err_max: the max over the sensors\n";
+    if (!res_.recommendation.empty()) f << "# recommendation: " << res_.recommendation << "\n";
     f << "# cpu: process CPU time (s) of each run, summed over its " << (run_ranks_ > 0 ? run_ranks_ : size_)
       << " MPI rank(s); wall: elapsed (s)\n";
     std::vector<std::string> extras;
@@ -1077,7 +1189,7 @@ class Study {
     for (const auto& r : res_.rows) {
       const bool ours = r.method == "alphaflex";
       f << mode_name(spec_.mode) << "," << r.method << "," << r.label << ",";
-      if (ours)
+      if (ours && !std::isnan(r.t_end))  // a variant that could not be built has no scheme (t_end NaN)
         f << r.params.scheme << "," << sig6(r.params.rho_infinity()) << "," << num(r.params.alpha_m) << ","
           << num(r.params.alpha_f) << "," << num(r.params.beta) << "," << num(r.params.gamma) << ","
           << (r.scaling ? "on" : "off");
@@ -1179,6 +1291,8 @@ class Study {
   bool peers_first_ = false;                   ///< rank 0 ran the peers while the other groups ran
   std::vector<std::pair<PeerResult, std::string>> peer_results_;  ///< rank 0: the peers' results, labels
   std::vector<std::string> sensors_;
+  int reference_unknowns_ = 0;  ///< fidelity: unknowns of the reference variant (default ranks per run)
+  std::string fatal_;           ///< fidelity: the reference failed; thrown once the rows are written
 };
 
 }  // namespace

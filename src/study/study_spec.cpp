@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -51,8 +52,10 @@ const Schema kStudy{"study", {
     {"errors", KeyType::Choice, "–", "`relative`", "`relative`: |x − x_ref| / |x_ref| (absolute if x_ref = 0); `absolute`", {}, "", "", {"relative", "absolute"}},
     {"condition_number", KeyType::Flag, "–", "off", "`convergence`: the condition numbers of S_t at the last state of each run"},
     {"peers", KeyType::Map, "–", "none", "`convergence` only: other solvers on the same problem (`study.peers`)"},
-    {"variants", KeyType::List, "–", "**required** for `fidelity` (at least 2)", "model variants (`study.variants`)"},
-    {"reference_variant", KeyType::Text, "–", "the last variant", "`fidelity`: the label of the variant the others are compared with"},
+    {"variants", KeyType::List, "–", "**required** for `fidelity` without `reduce` (at least 2)", "model variants (`study.variants`)"},
+    {"reference_variant", KeyType::Text, "–", "the last variant", "`fidelity` with `variants`: the label of the variant the others are compared with"},
+    {"reduce", KeyType::Map, "–", "none", "`fidelity`: the ladder rigid → reduced → full mesh of blocks of the scene, built from the one scene (`study.reduce`); not with `variants`"},
+    {"tolerance", KeyType::Number, "–", "none (**required** with `reduce`)", "`fidelity`: the largest acceptable error of a variant (max over the sensors of max over the output times of |variant − reference| / the sensor's range in the reference run); the study recommends the variant of least CPU time within it", Range::positive(), "tolerance"},
     {"plots", KeyType::Flag, "–", "on", "call the plotting script after writing the CSVs"},
     {"python", KeyType::Text, "–", "`/usr/bin/python3`", "interpreter for the plotting script and the Radau peer"},
     {"plot_script", KeyType::Text, "–", "`scripts/study_plots.py` of the source tree", "relative to the study file"}}};
@@ -81,6 +84,14 @@ const Schema kVariant{"study.variants", {
     {"label", KeyType::Text, "–", kRequired, "the name in the CSV; unique; no commas or quotes"},
     {"scene", KeyType::Text, "–", "the scene on the command line", "a scene file, relative to the study file"},
     {"set", KeyType::Texts, "–", "none", "scene overrides `key=value`", {}, "", "list of `key=value`"}}};
+const Schema kReduce{"study.reduce", {
+    {"blocks", KeyType::List, "–", kRequired, "the beam or shell blocks of the scene (`beams[NAME]`, `shells[NAME]`) each rung reduces: names, or maps `{name: NAME, interface: [...]}`", {}, "", "list of names or maps"},
+    {"interface", KeyType::Texts, "–", "**required** unless every block gives its own", "the interface points of the blocks (named points of the mesh, joint markers) where joints attach; for every block that gives none", {}, "", "list of names"},
+    {"method", KeyType::Choice, "–", "`craig_bampton`", "the reduction of the rungs with k modes (`reduction.method` of the block)", {}, "", "", {"craig_bampton", "herting"}},
+    {"ladder", KeyType::List, "–", "`[rigid, 2, 4, 8, 16, full]`", "the rungs, lightest first: `rigid` (each block one rigid body), a number of modes k (1 to 10000), `full` (the blocks' full nonlinear mesh, the reference; required)", {}, "", "list"}}};
+const Schema kReduceBlock{"study.reduce.blocks", {
+    {"name", KeyType::Text, "–", kRequired, "a beam or shell block of the scene"},
+    {"interface", KeyType::Texts, "–", "`study.reduce.interface`", "this block's interface points", {}, "", "list of names"}}};
 const Schema kStudyFile{"study.file", {{"study", KeyType::Map, "–", kRequired, "the study map"}}};
 
 /// A non-empty string (labels, names, paths).
@@ -144,10 +155,86 @@ std::string solver_override(const YAML::Node& scene_solver, const YAML::Node& se
   return std::string("solver=") + out.c_str();
 }
 
+/// `study.reduce`: the blocks (each found in the scene file, with its interface), the method and the
+/// rungs, expanded into the fidelity study's variants (fidelity_ladder.hpp).
+void read_ladder(const Reader& rd, const YAML::Node& r, const YAML::Node& scene_root, StudySpec& spec) {
+  const Section reduce(rd, r, "study.reduce", kReduce);
+  ReductionLadder& l = spec.reduce;
+  l.method = kReduce.find("method")->choices[static_cast<size_t>(reduce.choice("method"))];
+  std::vector<std::string> common;
+  if (reduce.has("interface")) common = reduce.texts("interface");
+  const YAML::Node blocks = reduce.node("blocks");
+  if (!blocks.IsSequence() || blocks.size() == 0)
+    rd.fail(blocks, "study.reduce.blocks", "expected a non-empty list of block names (or {name, interface} maps)");
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    const YAML::Node b = blocks[i];
+    std::string key = "study.reduce.blocks[" + std::to_string(i) + "]", name;
+    std::vector<std::string> interface = common;
+    bool own = false;
+    if (b.IsMap()) {
+      const Section block(rd, b, key, kReduceBlock);
+      name = nonempty_text(rd, block.node("name"), key + ".name");
+      if (block.has("interface")) interface = block.texts("interface"), own = true;
+    } else {
+      name = nonempty_text(rd, b, key);
+    }
+    const std::string path = find_block(scene_root, name);
+    if (path.empty()) {
+      std::string known;
+      for (const auto& n : block_names(scene_root)) known += (known.empty() ? "" : ", ") + n;
+      rd.fail(b, key, "the scene " + spec.scene + " has no beam or shell block named '" + name + "' (its blocks: " +
+                          (known.empty() ? std::string("none") : known) + ")");
+    }
+    if (std::count(l.block_names.begin(), l.block_names.end(), name)) rd.fail(b, key, "block '" + name + "' is named twice");
+    if (!own && !reduce.has("interface"))
+      rd.fail(b, key, "no interface for block '" + name + "': give study.reduce.interface or {name: " + name + ", interface: [...]}");
+    const std::string list = path.substr(0, path.find('.'));
+    if (scene_root[list][std::stoul(path.substr(path.find('.') + 1))]["reduction"])
+      rd.fail(b, key, "the scene's block " + list + "[" + name + "] has a `reduction` already; the ladder's reference is its full mesh: remove it from the scene");
+    l.block_paths.push_back(path);
+    l.block_names.push_back(name);
+    l.interfaces.push_back(interface);
+  }
+  std::vector<YAML::Node> at;
+  if (const YAML::Node steps = reduce.node("ladder")) {
+    if (!steps.IsSequence() || steps.size() == 0)
+      rd.fail(steps, "study.reduce.ladder", "expected a non-empty list of rungs: rigid, numbers of modes, full (e.g. [rigid, 2, 4, 8, 16, full])");
+    l.steps.clear();
+    for (size_t i = 0; i < steps.size(); ++i) {
+      const YAML::Node n = steps[i];
+      const std::string key = "study.reduce.ladder[" + std::to_string(i) + "]";
+      if (!n.IsScalar()) rd.fail(n, key, "expected rigid, full or a number of modes");
+      std::string step = n.Scalar();
+      if (step != "rigid" && step != "full") {
+        if (step.empty() || step.size() > 5 || step.find_first_not_of("0123456789") != std::string::npos ||
+            std::stoi(step) < 1 || std::stoi(step) > 10000)
+          rd.fail(n, key, "expected rigid, full or a number of modes from 1 to 10000, got '" + step + "'");
+        step = std::to_string(std::stoi(step));
+      }
+      if (std::count(l.steps.begin(), l.steps.end(), step)) rd.fail(n, key, "the rung '" + step + "' is given twice");
+      l.steps.push_back(step);
+      at.push_back(n);
+    }
+    if (!std::count(l.steps.begin(), l.steps.end(), "full"))
+      rd.fail(steps, "study.reduce.ladder", "expected `full` among the rungs: the errors are measured against the full mesh");
+  }
+  for (size_t i = 0; i < l.steps.size(); ++i) {
+    ModelVariant v;
+    v.label = rung_label(l.steps[i]);
+    v.scene = spec.scene;
+    v.overrides = rung_overrides(l, l.steps[i]);
+    v.where = i < at.size() ? rd.where(at[i], "study.reduce.ladder[" + l.steps[i] + "]")
+                            : rd.where(r, "study.reduce (rung " + l.steps[i] + " of the default ladder)");
+    spec.variants.push_back(v);
+  }
+  spec.reference_variant = rung_label("full");
+  spec.ladder = true;
+}
+
 }  // namespace
 
 std::vector<const input::Schema*> schemas() {
-  return {&kStudyFile, &kStudy, &kSetting, &kReference, &kPeers, &kVariant};
+  return {&kStudyFile, &kStudy, &kSetting, &kReference, &kPeers, &kVariant, &kReduce, &kReduceBlock};
 }
 
 StudySpec read_study(const std::string& scene_path, const std::string& study_path,
@@ -262,7 +349,18 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
     if (spec.mode != StudyMode::Convergence) rd.fail(p, "study.peers", "peers belong to a convergence (work-precision) study");
   }
 
-  if (const YAML::Node v = s["variants"]) {
+  if (study.has("tolerance")) {
+    spec.tolerance = study.number("tolerance");
+    if (spec.mode != StudyMode::Fidelity) rd.fail(s["tolerance"], "study.tolerance", "only in mode fidelity");
+  }
+  if (const YAML::Node r = s["reduce"]) {
+    if (spec.mode != StudyMode::Fidelity) rd.fail(r, "study.reduce", "the reduction ladder belongs to mode: fidelity");
+    if (s["variants"]) rd.fail(s["variants"], "study.variants", "give either study.reduce (the ladder) or study.variants, not both");
+    if (s["reference_variant"])
+      rd.fail(s["reference_variant"], "study.reference_variant", "with study.reduce the reference is the rung `full`");
+    if (!s["tolerance"]) rd.fail(s, "study.tolerance", "missing: the largest acceptable error of a rung (e.g. 0.01: 1 % of each sensor's range)");
+    read_ladder(rd, r, scene_root, spec);
+  } else if (const YAML::Node v = s["variants"]) {
     if (spec.mode != StudyMode::Fidelity) rd.fail(v, "study.variants", "variants belong to mode: fidelity");
     if (!v.IsSequence() || v.size() < 2) rd.fail(v, "study.variants", "expected a list of at least 2 variants {label, scene, set}");
     std::set<std::string> labels;
@@ -285,7 +383,8 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
         rd.fail(s["reference_variant"], "study.reference_variant", "no variant is labelled '" + spec.reference_variant + "'");
     }
   } else if (spec.mode == StudyMode::Fidelity) {
-    rd.fail(s, "study.variants", "missing: a fidelity study compares model variants {label, scene, set}");
+    rd.fail(s, "study.variants",
+            "missing: a fidelity study compares model variants {label, scene, set}, or the rungs of a ladder (study.reduce)");
   }
   if (spec.mode == StudyMode::Fidelity && spec.h.size() > 1)
     rd.fail(s["h"], "study.h", "a fidelity study runs every variant at one step size");

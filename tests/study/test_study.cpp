@@ -10,7 +10,9 @@
 
 #include "alphaflex/app/simulation.hpp"
 #include "alphaflex/io/scene.hpp"
+#include "alphaflex/io/schema.hpp"
 #include "alphaflex/study/andrews_ida.hpp"
+#include "alphaflex/study/fidelity_ladder.hpp"
 #include "alphaflex/study/iteration_matrix.hpp"
 #include "alphaflex/study/measures.hpp"
 #include "alphaflex/study/strain_energy.hpp"
@@ -256,6 +258,182 @@ TEST(StudyFidelity, StrainEnergySharesAndDifferencesToTheReferenceVariant) {
   }
   EXPECT_EQ(parts, 2);  // crank and rod
   EXPECT_NEAR(share, 1.0, 1e-12);
+}
+
+// ---------------------------------------------------------------- fidelity ladder (issue 19)
+TEST(StudyFidelityLadder, LadderExpandsIntoPatchesOfTheOneScene) {
+  // The default ladder on the flexible slider-crank's rod: 6 variants of the command line's scene,
+  // each the --set assignments of the reduced bodies' contract (issue 19), the last the full mesh.
+  const std::string dir = std::string(STUDY_TEST_OUTDIR);
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/ladder_default.yaml";
+  std::ofstream(file) << "study:\n  mode: fidelity\n  h: 1e-3\n  reduce: {blocks: [rod], interface: [A, B]}\n  tolerance: 0.01\n";
+  const StudySpec spec = read_study(src("inputs/slider_crank_flexible.yaml"), file);
+  ASSERT_TRUE(spec.ladder);
+  ASSERT_EQ(spec.variants.size(), 6u);
+  const std::vector<std::string> labels{"rigid", "2 modes", "4 modes", "8 modes", "16 modes", "full"};
+  for (size_t i = 0; i < labels.size(); ++i) {
+    EXPECT_EQ(spec.variants[i].label, labels[i]);
+    EXPECT_EQ(spec.variants[i].scene, src("inputs/slider_crank_flexible.yaml"));
+  }
+  EXPECT_EQ(spec.reference_variant, "full");
+  EXPECT_DOUBLE_EQ(spec.tolerance, 0.01);
+  ASSERT_EQ(spec.variants[0].overrides, std::vector<std::string>{"beams.0.reduction={method: rigid, interface: [A, B]}"});
+  ASSERT_EQ(spec.variants[3].overrides,
+            std::vector<std::string>{"beams.0.reduction={method: craig_bampton, modes: 8, interface: [A, B]}"});
+  EXPECT_TRUE(spec.variants[5].overrides.empty());  // full: no reduction key
+
+  // Applied as --set applies them, the patch is the contract's map on the block `rod`, the scene
+  // otherwise untouched.
+  YAML::Node scene = YAML::LoadFile(src("inputs/slider_crank_flexible.yaml"));
+  input::apply_override(scene, spec.variants[2].overrides[0], "--set", "scene");
+  const YAML::Node r = scene["beams"][0]["reduction"];
+  EXPECT_EQ(scene["beams"][0]["name"].Scalar(), "rod");
+  EXPECT_EQ(r["method"].Scalar(), "craig_bampton");
+  EXPECT_EQ(r["modes"].as<int>(), 4);
+  ASSERT_EQ(r["interface"].size(), 2u);
+  EXPECT_EQ(r["interface"][0].Scalar(), "A");
+  EXPECT_EQ(r["interface"][1].Scalar(), "B");
+  EXPECT_EQ(r.size(), 3u);
+
+  // Several blocks, each with its own interface, Herting, a ladder of the study's own.
+  ReductionLadder two;
+  two.block_paths = {"beams.0", "shells.1"};
+  two.interfaces = {{"A"}, {"P", "Q"}};
+  two.method = "herting";
+  EXPECT_EQ(rung_overrides(two, "2"),
+            (std::vector<std::string>{"beams.0.reduction={method: herting, modes: 2, interface: [A]}",
+                                      "shells.1.reduction={method: herting, modes: 2, interface: [P, Q]}"}));
+  YAML::Node both = YAML::Load("{beams: [{name: a}], shells: [{name: b}, {name: c}]}");
+  EXPECT_EQ(find_block(both, "c"), "shells.1");
+  EXPECT_EQ(find_block(both, "a"), "beams.0");
+  EXPECT_EQ(find_block(both, "x"), "");
+}
+
+TEST(StudyFidelityLadder, BadLadderInputIsRefusedByName) {
+  const std::string dir = std::string(STUDY_TEST_OUTDIR);
+  std::filesystem::create_directories(dir);
+  auto message = [&](const std::string& body) {
+    const std::string file = dir + "/ladder_bad.yaml";
+    std::ofstream(file) << "study:\n  mode: fidelity\n  h: 1e-3\n" << body;
+    try {
+      read_study(src("inputs/slider_crank_flexible.yaml"), file);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // Each study body with a part of the message it must raise (file:line: key: what was expected).
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"  reduce: {blocks: [crank], interface: [A]}\n  tolerance: 0.01\n",
+       "has no beam or shell block named 'crank' (its blocks: rod)"},
+      {"  reduce: {blocks: [rod], interface: [A, B], ladder: []}\n  tolerance: 0.01\n",
+       "ladder_bad.yaml:4: study.reduce.ladder: expected a non-empty list of rungs"},
+      {"  reduce: {blocks: [rod], interface: [A, B], ladder: [rigid, 4]}\n  tolerance: 0.01\n", "expected `full` among the rungs"},
+      {"  reduce: {blocks: [rod], interface: [A, B], ladder: [rigid, 0, full]}\n  tolerance: 0.01\n",
+       "study.reduce.ladder[1]: expected rigid, full or a number of modes from 1 to 10000, got '0'"},
+      {"  reduce: {blocks: [rod], interface: [A, B], ladder: [4, 4, full]}\n  tolerance: 0.01\n",
+       "study.reduce.ladder[1]: the rung '4' is given twice"},
+      {"  reduce: {blocks: [rod], interface: [A, B]}\n  tolerance: 0\n",
+       "ladder_bad.yaml:5: study.tolerance: expected a positive tolerance, got 0"},
+      {"  reduce: {blocks: [rod], interface: [A, B]}\n  tolerance: -0.01\n", "study.tolerance: expected a positive tolerance, got -0.01"},
+      {"  reduce: {blocks: [rod], interface: [A, B]}\n", "study.tolerance: missing"},
+      {"  reduce: {blocks: [rod]}\n  tolerance: 0.01\n", "no interface for block 'rod'"},
+      {"  reduce: {blocks: [rod], interface: [A, B], method: guyan}\n  tolerance: 0.01\n", "study.reduce.method"}};
+  for (const auto& [body, part] : cases) {
+    const std::string m = message(body);
+    EXPECT_NE(m.find(part), std::string::npos) << m;
+  }
+}
+
+TEST(StudyFidelityLadder, ErrorIsTheLargestDifferenceOverTheReferenceRange) {
+  // Reference history 1, 3, 2 (range 2); variant 1.5, 2.5, 2: differences 0.5, 0.5, 0 → 0.25.
+  EXPECT_DOUBLE_EQ(history_error({1.5, 2.5, 2.0}, {1.0, 3.0, 2.0}, true), 0.25);
+  EXPECT_DOUBLE_EQ(history_error({1.5, 2.5, 2.0}, {1.0, 3.0, 2.0}, false), 0.5);
+  // A sensor constant in the reference: the absolute difference.
+  EXPECT_DOUBLE_EQ(history_error({4.0, 4.2}, {4.0, 4.0}, true), 4.2 - 4.0);
+  EXPECT_TRUE(std::isnan(history_error({1.0, std::nan("")}, {1.0, 2.0}, true)));
+  // Output times: the variant's positions of the reference's times; a missing one says where.
+  std::string why;
+  EXPECT_EQ(matching_times({0.0, 0.1, 0.2, 0.3}, {0.0, 0.2}, why), (std::vector<size_t>{0, 2}));
+  EXPECT_TRUE(matching_times({0.0, 0.1, 0.3}, {0.0, 0.2}, why).empty());
+  EXPECT_NE(why.find("none at t = 0.2 s"), std::string::npos) << why;
+}
+
+TEST(StudyFidelityLadder, RecommendationIsTheCheapestAcceptableRung) {
+  // errors 0.2, 0.005, 0.02, 0.003, 0 at CPU 1, 2, 3, 5, 50 s; tolerance 0.01: acceptable 2 modes,
+  // 8 modes, full; lightest 2 modes; the ladder is acceptable from 8 modes on (4 modes is not).
+  std::vector<Rung> rungs{{"rigid", true, 1.0, 0.2}, {"2 modes", true, 2.0, 0.005}, {"4 modes", true, 3.0, 0.02},
+                          {"8 modes", true, 5.0, 0.003}, {"full", true, 50.0, 0.0}};
+  Recommendation r = recommend(rungs, 0.01);
+  EXPECT_EQ(r.acceptable, (std::vector<bool>{false, true, false, true, true}));
+  EXPECT_EQ(r.lightest, 1);
+  EXPECT_EQ(r.acceptable_from, 3);
+  EXPECT_NE(r.text.find("the lightest variant within it is '2 modes'"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("acceptable from '8 modes' on (also acceptable before it: '2 modes')"), std::string::npos) << r.text;
+  // A failed rung is neither acceptable nor a break in the ladder; tolerance below every error
+  // but the reference's.
+  rungs[3].ok = false;
+  r = recommend(rungs, 1e-3);
+  EXPECT_EQ(r.lightest, 4);
+  EXPECT_EQ(r.acceptable_from, 4);
+  EXPECT_NE(r.text.find("failed or not measured: '8 modes'"), std::string::npos) << r.text;
+  rungs[4].error = std::nan("");
+  EXPECT_EQ(recommend(rungs, 1e-3).lightest, -1);
+}
+
+TEST(StudyFidelityLadder, VariantsRunAndFailuresAreRows) {
+  // tests/study/fidelity_ladder.yaml: the rod in 2, 4, 8 elements (the reference), a variant with
+  // an unknown key and one whose Newton fails. Errors measured on this scene (theta1, x3 over
+  // 0.2 s): 2 beams 6.3e-4, 4 beams 5.6e-4; tolerance 6e-4.
+  const StudyResult r = run("inputs/slider_crank_flexible.yaml", "tests/study/fidelity_ladder.yaml");
+  ASSERT_EQ(r.rows.size(), 5u);
+  const StudyRow& bad = row(r, "unknown key");
+  EXPECT_FALSE(bad.ok);
+  EXPECT_NE(bad.failure.find("beams[0].no_such_key: unknown key"), std::string::npos) << bad.failure;
+  const StudyRow& newton = row(r, "newton fails");
+  EXPECT_FALSE(newton.ok);
+  EXPECT_NE(newton.failure.find("Newton did not converge"), std::string::npos) << newton.failure;
+  EXPECT_TRUE(std::isnan(newton.get("max")));
+  EXPECT_EQ(row(r, "rod 8 beams").get("max"), 0.0);
+  const double e2 = row(r, "rod 2 beams").get("max"), e4 = row(r, "rod 4 beams").get("max");
+  EXPECT_GT(e2, 6e-4);
+  EXPECT_LT(e4, 6e-4);
+  EXPECT_GT(e4, 1e-5);
+  EXPECT_DOUBLE_EQ(e2, std::max(row(r, "rod 2 beams").get("theta1"), row(r, "rod 2 beams").get("x3")));
+  EXPECT_EQ(row(r, "rod 2 beams").get("unknowns"), 20.0);  // 3 bodies (5 q) + 3 nodes (9 q) + 6 multipliers
+  EXPECT_EQ(row(r, "rod 2 beams").get("acceptable"), 0.0);
+  EXPECT_EQ(r.acceptable_from, "rod 4 beams");
+  // The recommendation is the acceptable row of least CPU time.
+  const StudyRow& a = row(r, "rod 4 beams");
+  const StudyRow& b = row(r, "rod 8 beams");
+  EXPECT_EQ(r.recommended, a.cpu <= b.cpu ? "rod 4 beams" : "rod 8 beams");
+  EXPECT_EQ(row(r, r.recommended).get("recommended"), 1.0);
+  EXPECT_NE(r.recommendation.find("acceptable from 'rod 4 beams' on"), std::string::npos) << r.recommendation;
+}
+
+TEST(StudyFidelityLadder, FailedReferenceStopsAfterTheRowsAreWritten) {
+  // With the Newton failure as the reference no error can be measured: SolverError (exit 3), but
+  // the CSV with every row is written first.
+  const std::string csv = std::string(STUDY_TEST_OUTDIR) + "/fidelity_ladder/fidelity_ladder_study.csv";
+  std::filesystem::remove(csv);
+  try {
+    run("inputs/slider_crank_flexible.yaml", "tests/study/fidelity_ladder.yaml", {"reference_variant=newton fails"});
+    FAIL() << "no error";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("the reference variant 'newton fails' failed, so no error can be measured"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ifstream in(csv);
+  ASSERT_TRUE(in.good()) << csv;
+  int rows = 0;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("fidelity,", 0) == 0) ++rows;
+  EXPECT_EQ(rows, 5);
+  // A sensor the reference scene lacks is bad input, before any run.
+  EXPECT_THROW(run("inputs/slider_crank_flexible.yaml", "tests/study/fidelity_ladder.yaml", {"sensors=[theta1, nope]"}),
+               InputError);
 }
 
 }  // namespace

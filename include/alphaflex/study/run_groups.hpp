@@ -76,6 +76,11 @@ struct RunOutcome {
   std::vector<std::string> sensor_names;
   std::vector<double> final_sensors;
   MechanicalState final_state;
+  /// Fidelity runs: the output times, each sensor's history at them (sensor_names order) and the
+  /// strain energy per flexible part.
+  std::vector<double> times;
+  std::vector<std::vector<double>> histories;
+  std::vector<EnergyRow> energy;
   int error_code = 0;                ///< exit code of an exception other than a failed run (exit_agreement.hpp)
   std::string error;                 ///< its message
 };

@@ -2,9 +2,9 @@
 // `alphaflex study`: runs a scene over step sizes and scheme settings (or model variants), measures
 // errors against a named reference, cost (process CPU time, Newton iterations) and stability
 // numbers, writes them to a CSV and calls scripts/study_plots.py for the charts (docs/study.md,
-// docs/stability.md). Collective over the communicator: a convergence study splits the ranks into
-// groups that run different simulations concurrently (StudyOptions::ranks_per_run), the other modes
-// run every simulation on every rank; rank 0 runs the peers (IDA, Radau), writes the files and
+// docs/stability.md). Collective over the communicator: a convergence or fidelity study splits the
+// ranks into groups that run different simulations concurrently (StudyOptions::ranks_per_run), the
+// other modes run every simulation on every rank; rank 0 runs the peers (IDA, Radau), writes the files and
 // calls the plotting script.
 #include <mpi.h>
 
@@ -25,10 +25,11 @@ struct StudyOptions {
   std::vector<std::string> scene_overrides;  ///< --set: applied to every run, after the setting's solver keys
   bool verbose = true;                       ///< a line per run and the summary on rank 0
   bool plots = true;                         ///< false: never call the plotting script (--no-plots)
-  /// Ranks of each simulation of a convergence study (--ranks-per-run): the job's ranks split into
+  /// Ranks of each simulation of a convergence or fidelity study (--ranks-per-run): the job's ranks split into
   /// groups of this size that run different simulations at the same time (run_groups.hpp). 0: the
   /// default (1 for a scene of at most kSmallSceneUnknowns unknowns, else every rank). It must
-  /// divide the number of ranks. The other modes run every simulation on every rank.
+  /// divide the number of ranks (fidelity: the default from the reference variant's unknowns). The
+  /// other modes run every simulation on every rank.
   int ranks_per_run = 0;
 };
 
@@ -79,11 +80,16 @@ struct StudyResult {
   std::map<std::string, std::map<std::string, SlopeFit>> slope_fits;
   std::vector<std::string> files;   ///< files written (rank 0)
   std::vector<std::string> warnings;
+  /// fidelity with study.tolerance: the printed recommendation, the label of the lightest
+  /// acceptable variant and of the first rung from which all are acceptable ("" if none)
+  std::string recommendation, recommended, acceptable_from;
 };
 
 /// Runs the study. Throws InputError for bad input (a setting's overrides, a reference without the
 /// study's final time, parameters that fail eq. 17/18/20 without `force: on`) and SolverError
-/// when the reference run fails; a failing study run is a result (status failed), not an error.
+/// when the reference run fails (fidelity: the reference variant, after the CSV is written); a
+/// failing study run is a result (status failed), not an error — in mode fidelity also a variant
+/// whose scene cannot be built.
 StudyResult run_study(const StudySpec& spec, const StudyOptions& options, MPI_Comm comm);
 
 }  // namespace alphaflex::study

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "alphaflex/study/fidelity_ladder.hpp"
+
 namespace alphaflex::input {
 struct Schema;
 }
@@ -67,6 +69,13 @@ struct StudySpec {
   std::vector<SchemeSetting> settings;
   std::vector<ModelVariant> variants;
   std::string reference_variant;  ///< fidelity: the variant the others are compared with (default: the last)
+  /// fidelity: `study.reduce` given: `variants` are its ladder's rungs (fidelity_ladder.hpp), the
+  /// reference is the rung `full`
+  bool ladder = false;
+  ReductionLadder reduce;
+  /// fidelity: the largest acceptable error (max over the sensors, relative to each sensor's range in
+  /// the reference run); > 0: the study recommends the lightest variant within it; 0: none given
+  double tolerance = 0.0;
   ReferenceSpec reference;
   std::vector<std::string> sensors;  ///< sensors to report (empty: a default per mode)
   std::vector<std::string> overrides;  ///< `set:`: scene overrides for every run, before the settings' own

@@ -1,0 +1,70 @@
+#pragma once
+// The fidelity study's ladder (issue 19): one scene expanded into model variants — a block rigid,
+// reduced to k modes, or its full nonlinear mesh — as in-memory patches of the scene (the `--set`
+// assignments of io/schema.hpp, so a variant is exactly the scene a user gets with those --set
+// options); the error of a variant against the full model, sensor by sensor, over the output
+// times; and the recommendation of the lightest variant within the study's tolerance
+// (docs/study.md, "Rigid, reduced or full").
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+namespace alphaflex::study {
+
+/// `study.reduce`: which blocks of the scene the ladder reduces, and how.
+struct ReductionLadder {
+  /// The blocks' places in the scene ("beams.0", "shells.2"), in the order the study names them.
+  std::vector<std::string> block_paths;
+  std::vector<std::string> block_names;
+  /// Interface points (named points or joint markers) of each block, in block order.
+  std::vector<std::vector<std::string>> interfaces;
+  std::string method = "craig_bampton";  ///< craig_bampton | herting: the reduced rungs' method
+  /// The rungs, lightest first: "rigid", a number of modes ("4"), "full" (the reference).
+  std::vector<std::string> steps{"rigid", "2", "4", "8", "16", "full"};
+};
+
+/// The place of the beam or shell block named `name` in the scene tree ("beams.0", "shells.1"),
+/// or "" if the scene has none of that name.
+std::string find_block(const YAML::Node& scene_root, const std::string& name);
+/// The names of the scene's beam and shell blocks (for "its blocks: ..." in messages).
+std::vector<std::string> block_names(const YAML::Node& scene_root);
+
+/// The label of a rung in the CSV and the charts: "rigid", "4 modes", "full".
+std::string rung_label(const std::string& step);
+
+/// The scene overrides (key.path=value, as --set takes them) that make rung `step` of the ladder:
+/// per block `PATH.reduction={method: rigid, interface: [...]}`, `{method: M, modes: k,
+/// interface: [...]}`, or nothing at all for "full" (no `reduction` key: the full mesh). This is
+/// the contract with the reduced bodies' reader (issue 19).
+std::vector<std::string> rung_overrides(const ReductionLadder& ladder, const std::string& step);
+
+/// Error of a variant's sensor history `x` against the full model's `x_full` at the same output
+/// times: max_t |x − x_full| divided by the full run's range max_t x_full − min_t x_full
+/// (`relative`), or max_t |x − x_full| (not `relative`, or a sensor constant in the full run).
+double history_error(const std::vector<double>& x, const std::vector<double>& x_full, bool relative);
+
+/// Positions in `t` of the full run's output times `t_full` (equal to 1e-9 relative, as output
+/// times are matched elsewhere: io/sensor_schedule.cpp). When a full-run time has no match,
+/// returns an empty vector and says which in `why`.
+std::vector<size_t> matching_times(const std::vector<double>& t, const std::vector<double>& t_full, std::string& why);
+
+/// One variant as the recommendation sees it.
+struct Rung {
+  std::string label;
+  bool ok = true;      ///< the run succeeded and its error was measured
+  double cpu = 0.0;    ///< s
+  double error = 0.0;  ///< max over the study's sensors
+};
+
+/// The lightest acceptable variant and where along the ladder the acceptable ones start.
+struct Recommendation {
+  std::vector<bool> acceptable;  ///< per rung: ok and error ≤ tolerance
+  int lightest = -1;             ///< the acceptable rung of least CPU time (-1: none)
+  /// The first rung from which every rung that ran is acceptable (-1: not even the last).
+  int acceptable_from = -1;
+  std::string text;  ///< the printed recommendation
+};
+Recommendation recommend(const std::vector<Rung>& rungs, double tolerance);
+
+}  // namespace alphaflex::study
