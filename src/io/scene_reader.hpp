@@ -62,6 +62,7 @@ struct MeshBlocks {
   std::vector<int> node_of;                ///< mesh node → model node (−1: none yet)
   std::map<int, std::string> point_name;   ///< mesh node → name of its named point
   std::set<std::string> groups_used;       ///< groups a block uses (one block per group)
+  std::set<int> reduced;                   ///< mesh nodes of reduced blocks that have no model node (types/reduced_beams_3d.cpp)
   std::map<std::string, Eigen::Matrix3d> placement;  ///< rotation of each placed group (scene_initial.cpp)
   /// Mesh node → (velocity, angular velocity), world components, of an initial velocity field (scene_initial.cpp).
   std::map<int, std::array<Eigen::Vector3d, 2>> velocity;
