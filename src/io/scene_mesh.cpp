@@ -46,7 +46,7 @@ MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
 }
 
 /// Named points must be beam nodes: a point on no beam would be a node nothing holds.
-void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, const std::vector<int>& node_of, const std::set<int>& reduced) {
+void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, const std::vector<int>& node_of, const std::map<int, std::string>& reduced) {
   for (const auto& [pname, id] : mesh.named_points)
     if (node_of[static_cast<size_t>(id)] < 0 && !reduced.count(id))
       rd.fail(mn["file"], "mesh.file",

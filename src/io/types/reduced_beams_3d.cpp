@@ -78,7 +78,11 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
   // The block's other mesh nodes have no node in the run's model: their motion is the frame's and
   // the amplitudes' (ReducedBlock::node_pose).
   for (const auto& [m, id] : in_block)
-    if (m != m0) it.sb.blocks.reduced.insert(m);
+    if (m != m0) {
+      it.sb.blocks.reduced.emplace(m, it.name);
+      const auto pn = mb.point_name.find(m);
+      if (pn != mb.point_name.end()) it.sb.reduced_points.emplace(pn->second, it.name);
+    }
   std::vector<int> amplitudes;
   for (int i = 0; i < rb.matrices.elastic(); ++i) {
     Node c;
