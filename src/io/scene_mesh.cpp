@@ -46,14 +46,14 @@ MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
 }
 
 /// Named points must be beam nodes: a point on no beam would be a node nothing holds.
-void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, const std::vector<int>& node_of) {
+void check_named_points(Reader& rd, const YAML::Node& mn, const MeshData& mesh, const std::vector<int>& node_of, const std::map<int, std::string>& reduced) {
   for (const auto& [pname, id] : mesh.named_points)
-    if (node_of[static_cast<size_t>(id)] < 0)
+    if (node_of[static_cast<size_t>(id)] < 0 && !reduced.count(id))
       rd.fail(mn["file"], "mesh.file",
               "named point '" + pname + "' is on none of the beams' or shells' groups (an unconnected node); put it on a beam's curve or a shell's surface, or remove it");
   for (const auto& [pname, ids] : mesh.point_groups)
     for (int id : ids)
-      if (node_of[static_cast<size_t>(id)] < 0)
+      if (node_of[static_cast<size_t>(id)] < 0 && !reduced.count(id))
         rd.fail(mn["file"], "mesh.file",
                 "point group '" + pname + "' holds mesh node " + std::to_string(mesh.node_tags[static_cast<size_t>(id)]) +
                     ", which is on none of the beams' or shells' groups (an unconnected node); every point of a point group must be on a beam's curve or a shell's surface");
@@ -167,7 +167,7 @@ void read_mesh_and_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& root, 
   for (const auto& [name, id] : mesh.named_points) sb.blocks.point_name[id] = name;
   for (size_t k = 0; k < given.size(); ++k)
     if (given[k]) read_blocks(rd, sb, given[k], blocks[k]);
-  check_named_points(rd, mn, mesh, sb.blocks.node_of);
+  check_named_points(rd, mn, mesh, sb.blocks.node_of, sb.blocks.reduced);
   check_group_velocities(rd, sb.blocks, root);
   if (dimension == 3) keep_groups(sb, mesh, sb.blocks.node_of);
 }

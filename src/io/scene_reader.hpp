@@ -62,6 +62,7 @@ struct MeshBlocks {
   std::vector<int> node_of;                ///< mesh node → model node (−1: none yet)
   std::map<int, std::string> point_name;   ///< mesh node → name of its named point
   std::set<std::string> groups_used;       ///< groups a block uses (one block per group)
+  std::map<int, std::string> reduced;      ///< mesh nodes of reduced blocks that have no model node → the block (types/reduced_beams_3d.cpp)
   std::map<std::string, Eigen::Matrix3d> placement;  ///< rotation of each placed group (scene_initial.cpp)
   /// Mesh node → (velocity, angular velocity), world components, of an initial velocity field (scene_initial.cpp).
   std::map<int, std::array<Eigen::Vector3d, 2>> velocity;
@@ -80,6 +81,7 @@ class SceneBuilder {
   std::string mesh_file;                       ///< the scene's mesh, for messages
   std::map<std::string, MeshGroup> mesh_groups;  ///< the mesh's physical groups by name
   MeshBlocks blocks;                           ///< while `beams` and `shells` are read
+  std::map<std::string, std::string> reduced_points;  ///< named mesh points without a node → their reduced block
 
   /// The mesh group named by the section's key `key` (of dimension `dim`, if ≥ 0), all of whose
   /// nodes are model nodes; clear errors otherwise.
@@ -117,6 +119,9 @@ class SceneBuilder {
       return -1;
     }
     const int id = model_.find_node(name);
+    if (id < 0 && reduced_points.count(name))
+        rd_.fail(n, s.key_path(key), "'" + name + "' is a point inside the reduced beam block '" + reduced_points.at(name) +
+                                         "': only its first interface point has a node; joints, loads and sensors at its other points are not available yet");
     if (id < 0 && mesh_groups.count(name))
       rd_.fail(n, s.key_path(key), "'" + name + "' is a mesh group of " + std::to_string(mesh_groups.at(name).nodes.size()) +
                                        " nodes, not one body: give it as `group` (a joint or load at each of its nodes)");

@@ -5,7 +5,7 @@
 
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
-#include "common.hpp"
+#include "reduced_beams_3d.hpp"
 
 namespace alphaflex::scene_detail {
 namespace {
@@ -43,7 +43,18 @@ void read_beam_block_3d(const Item& it) {
   const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
   const BeamSection section = read_beam_section(it.rd, k.node("section"), it.at("section"));
   const Eigen::Vector3d orient = it.sb.blocks.placed(k.text("group"), k.direction("orientation"));
+  if (k.has("reduction")) return read_reduced_beam_block_3d(it, block, section, orient);
+  add_beam_elements(it, block, section, orient, it.model,
+                    [&](int m, const Eigen::VectorXd& q0) { return block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6)); });
+}
+
+}  // namespace
+
+std::vector<int> add_beam_elements(const Item& it, const MeshLineBlock& block, const BeamSection& section, const Eigen::Vector3d& orient,
+                                   Model& model, const BlockNodeOf& node_of) {
+  const Section& k = it.keys;
   const MeshData& mesh = it.sb.blocks.mesh;
+  std::vector<int> ids;
   for (size_t e = 0; e < block.elements.size(); ++e) {
     const int ma = block.elements[e][0], mb = block.elements[e][1];
     const Eigen::Vector3d xa = mesh.points[static_cast<size_t>(ma)], xb = mesh.points[static_cast<size_t>(mb)];
@@ -61,21 +72,21 @@ void read_beam_block_3d(const Item& it) {
       const int m = block.elements[e][static_cast<size_t>(a)];
       Eigen::VectorXd q0(7);
       store_pose(mesh.points[static_cast<size_t>(m)], sec, q0.data());
-      n[a] = block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6));
+      n[a] = node_of(m, q0);
     }
     try {
-      it.model.add_element(std::make_unique<GeometricallyExactBeam>(
-          it.name + "[" + std::to_string(e) + "]", n[0], n[1], section, pose_of(it.model.node(n[0]).q0.data()),
-          pose_of(it.model.node(n[1]).q0.data()), sec, sec, it.sb.gravity));
+      ids.push_back(static_cast<int>(model.elements().size()));
+      model.add_element(std::make_unique<GeometricallyExactBeam>(
+          it.name + "[" + std::to_string(e) + "]", n[0], n[1], section, pose_of(model.node(n[0]).q0.data()),
+          pose_of(model.node(n[1]).q0.data()), sec, sec, it.sb.gravity));
     } catch (const std::invalid_argument& ex) {
       std::ostringstream os;
       os << "element " << block.element_tags[e] << " of group '" << block.name << "': " << ex.what();
       it.rd.fail(k.node("group"), it.at("group"), os.str());
     }
   }
+  return ids;
 }
-
-}  // namespace
 
 BeamSection read_beam_section(const Reader& rd, const YAML::Node& n, const std::string& key) {
   if (!n.IsMap()) rd.fail(n, key, "expected a map of section properties");
@@ -111,10 +122,12 @@ void register_beams_3d(SceneTypes& t) {
       {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in mesh order"},
       {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh, used by one beam only"},
       {"section", KeyType::Map, "–", kRequired, "`beams.section.material` or `beams.section.properties`"},
-      {"orientation", KeyType::Vec3, "–", kRequired, "direction of the section's axis 2 (projected ⊥ to each element); not parallel to an element"}}},
+      {"orientation", KeyType::Vec3, "–", kRequired, "direction of the section's axis 2 (projected ⊥ to each element); not parallel to an element"},
+      {"reduction", KeyType::Map, "–", "– (the full mesh)", "`beams.reduction`: the block as one reduced flexible body (docs/theory/reduced_bodies.md)"}}},
       {"name, group, section, orientation", read_beam_block_3d});
   t.parts.push_back(&material_schema());
   t.parts.push_back(&properties_schema());
+  t.parts.push_back(&reduction_schema());
 }
 
 }  // namespace alphaflex::scene_detail

@@ -1,0 +1,66 @@
+#pragma once
+// A reduced flexible body (docs/theory/reduced_bodies.md): a floating frame — the pose of the
+// body's reference interface node, an ordinary Frame3D node that joints attach to unchanged —
+// carrying small elastic deformations u = Φ ξ in a Craig–Bampton basis (constraint modes of the
+// other interface nodes and fixed-interface normal modes, all computed with the reference node
+// clamped), whose amplitudes ξ are scalar vector-space unknowns (one node each, like the joint
+// coordinates of joints/joint_coordinate.hpp).
+//
+// Kinetic energy of the full mesh in the floating frame (Shabana, Dynamics of Multibody Systems,
+// 4th ed. (2013), ch. 5; Cardona & Géradin, IJNME 32 (1991)): with w = [u; ω; ξ̇], u = Rᵀẋ,
+//   T = ½ wᵀ 𝕄(ξ) w,  𝕄(ξ) = M₀ + Σᵢ ξᵢ (Cᵢ + Cᵢᵀ) + Σᵢⱼ ξᵢ ξⱼ M₂ᵢⱼ,
+// where the matrices are projections of the block's consistent mass matrix (the "inertia
+// invariants", computed by modal/superelement.hpp), V = ½ ξᵀ K̃ ξ. Euler–Poincaré equations on
+// R³×SO(3)×Rᵐ (right-trivialized, h = 𝕄 w, ḣ = 𝕄 ẇ + Σ ξ̇ᵢ ∂𝕄/∂ξᵢ w, u̇ = Rᵀ(ẍ − g) − ω × u):
+//   r_x = R (ḣ_u + ω × h_u)
+//   r_θ = ḣ_ω + ω × h_ω + u × h_u
+//   r_ξ = ḣ_ξ − ½ wᵀ ∂𝕄/∂ξ w + K̃ ξ
+// All inertia coupling and gyroscopic (quadratic velocity) terms are kept; gravity enters as the
+// uniform acceleration field −g of every mass particle (ẍ − g). K, C, M are the exact derivatives
+// of r (forward AD over the right-trivialized increments, core/autodiff.hpp's Eigen AutoDiffScalar
+// with a dynamic derivative vector: the body has 6 + m unknowns, more than the fixed capacity).
+#include <vector>
+
+#include "alphaflex/model/element.hpp"
+
+namespace alphaflex {
+
+/// The plain data of a reduced body, for m elastic coordinates (the element sees nothing else).
+struct ReducedBodyMatrices {
+  Eigen::MatrixXd M0;                 ///< (6 + m)²: 𝕄 at ξ = 0
+  std::vector<Eigen::MatrixXd> C;     ///< m matrices 3 × (6 + m): the ω rows of ∂𝕄/∂ξᵢ's one-sided part
+  std::vector<Eigen::Matrix3d> M2;    ///< m² matrices (i·m + j): the ω–ω block of 𝕄's quadratic part
+  Eigen::MatrixXd K;                  ///< m × m: K̃, the elastic stiffness in the basis
+  int elastic() const { return static_cast<int>(K.rows()); }
+  /// 𝕄(ξ) (6 + m)².
+  Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& xi) const;
+  /// Throws std::invalid_argument unless the sizes agree and M0, K are symmetric.
+  void check() const;
+};
+
+class ReducedBody final : public Element {
+ public:
+  /// `frame`: the reference Frame3D node; `coordinates`: the m scalar nodes of ξ (vector spaces
+  /// with one unknown); `gravity` in m/s².
+  ReducedBody(std::string name, int frame, const std::vector<int>& coordinates, ReducedBodyMatrices matrices,
+              const Eigen::Vector3d& gravity);
+  const char* type() const override { return "reduced_body"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<ReducedBody>(*this); }
+  void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  /// ½ ξᵀ K̃ ξ (J).
+  double elastic_energy(const Eigen::VectorXd& q) const override;
+  const ReducedBodyMatrices& matrices() const { return m_; }
+
+  /// The residual at a state, for any scalar (double or AD): R the frame's rotation, the rest
+  /// as in LocalState with the frame's 7 configuration numbers removed from q.
+  template <class S>
+  Eigen::Matrix<S, Eigen::Dynamic, 1> residual(const Eigen::Matrix<S, 3, 3>& R, const Eigen::Matrix<S, Eigen::Dynamic, 1>& xi,
+                                               const Eigen::Matrix<S, Eigen::Dynamic, 1>& v,
+                                               const Eigen::Matrix<S, Eigen::Dynamic, 1>& a, double load_factor) const;
+
+ private:
+  ReducedBodyMatrices m_;
+  Eigen::Vector3d g_;
+};
+
+}  // namespace alphaflex

@@ -1,0 +1,100 @@
+#pragma once
+// Component mode synthesis of a flexible block (docs/theory/reduced_bodies.md): the block's linear
+// stiffness and mass at its undeformed state, assembled from its own element kernels, and their
+// reduction by Craig–Bampton (Craig & Bampton, AIAA J. 6 (1968) 1313) — static constraint modes of
+// the interface coordinates and the lowest fixed-interface normal modes — and the rigid-body mass
+// properties of the block (method `rigid`). Everything here is plain dense data: the reduced-body
+// element (elements module, upstream) receives matrices, never a model.
+//
+// Why dense Eigen and not SLEPc: a reduced block is one link of a mechanism (10²–10⁴ unknowns);
+// the fixed-interface eigenproblem is solved once per run, and the dense generalized symmetric
+// solver (LAPACK-class, Eigen's GeneralizedSelfAdjointEigenSolver) returns every mode with
+// M-orthonormal vectors to round-off, which the exactness test (all modes kept) needs. The SLEPc
+// path of modal_analysis.cpp is for the whole constrained mechanism.
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "alphaflex/elements/reduced_body.hpp"
+
+namespace alphaflex {
+
+class Model;
+
+/// The linear K and M of a set of elements at the model's initial state (q0, zero velocities and
+/// accelerations), on the unknowns of the nodes they touch, in the nodes' own increments (δx world,
+/// δθ node frame for Frame3D nodes).
+struct BlockMatrices {
+  std::vector<int> nodes;    ///< model node ids, ascending
+  std::vector<int> offsets;  ///< first row of each node in K, M
+  Eigen::MatrixXd K, M;
+  /// Row of unknown `k` of model node `node`; -1 if the node is not in the block.
+  int row_of(int node, int k = 0) const;
+};
+
+/// Assembles the elements `element_ids` (indices into model.elements()) at the initial state.
+/// Throws std::invalid_argument if the list is empty.
+BlockMatrices assemble_block(const Model& model, const std::vector<int>& element_ids);
+
+/// A Craig–Bampton superelement: full coordinates u = T ξ with ξ = [u_b; η], u_b the interface
+/// (boundary) coordinates in the order given, η the amplitudes of the fixed-interface modes
+/// (M-orthonormal, ascending frequency).
+struct Superelement {
+  std::vector<int> boundary;     ///< rows of the full matrices that are interface coordinates
+  Eigen::MatrixXd T;             ///< n × (n_b + k): constraint modes, then normal modes
+  Eigen::MatrixXd K, M;          ///< Tᵀ K T, Tᵀ M T (symmetric)
+  Eigen::VectorXd frequencies;   ///< Hz: the kept fixed-interface modes
+  int interface_size() const { return static_cast<int>(boundary.size()); }
+  int modes() const { return static_cast<int>(frequencies.size()); }
+};
+
+/// How many fixed-interface modes a block with `n` coordinates and `n_boundary` interface
+/// coordinates has (the most `craig_bampton` accepts).
+inline int available_modes(int n, int n_boundary) { return n - n_boundary; }
+
+/// Craig–Bampton reduction of (K, M) with the interface rows `boundary` (distinct, in range) and
+/// `modes` fixed-interface modes. Throws std::invalid_argument (message names what is wrong) if
+/// `boundary` is empty (a free block has no constraint modes: give it an interface or a support),
+/// repeats or leaves the range, if `modes` is negative or more than the block has, or if the
+/// interior is not restrained by the interface (K_ii singular: a mechanism inside the block).
+Superelement craig_bampton(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const std::vector<int>& boundary, int modes);
+
+/// Rigid-body mass properties of a block: its kinetic energy under rigid motions of all its nodes,
+/// Gᵀ M G with G the 6 rigid modes (translation, rotation about the world origin).
+struct RigidMassProperties {
+  double mass = 0.0;                                    ///< kg
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();     ///< m, world: centre of mass at t = 0
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();    ///< kg·m², world axes, about the centre
+};
+
+/// From the block matrices and the model's initial poses of the block's (Frame3D) nodes. Throws
+/// std::invalid_argument if a node is not a spatial frame or the mass is not positive.
+RigidMassProperties rigid_mass_properties(const Model& model, const BlockMatrices& block);
+
+/// A block reduced on a floating frame (docs/theory/reduced_bodies.md): the frame is the pose of
+/// the reference interface node, the basis the Craig–Bampton modes of the block with that node
+/// clamped (constraint modes of the other interface nodes, then `modes` fixed-interface modes).
+struct ReducedBlock {
+  int frame_node = -1;                 ///< model node id of the reference interface node
+  Superelement superelement;           ///< on the block's coordinates without the frame node's
+  ReducedBodyMatrices matrices;        ///< the element's plain data
+  /// Per block node (BlockMatrices order): position in the frame at t = 0 (m), rotation of the
+  /// node frame relative to the floating frame, and the node's 6 rows of the basis (δx in the
+  /// floating frame's axes, δθ in the node frame) per elastic coordinate.
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<Eigen::MatrixXd> shapes;  ///< 6 × m each
+  /// The pose (x, R) of block node `a` for the frame pose (x_f, R_f) and amplitudes ξ:
+  /// x = x_f + R_f (X_a + Φᵗ_a ξ), R = R_f R_a exp((Φʳ_a ξ)^).
+  void node_pose(size_t a, const Eigen::Vector3d& xf, const Eigen::Matrix3d& Rf, const Eigen::VectorXd& xi, Eigen::Vector3d& x,
+                 Eigen::Matrix3d& R) const;
+};
+
+/// Reduces `block` (all its nodes Frame3D) on the frame of `frame_node` with the other interface
+/// nodes `interface_nodes` (their 6 coordinates each become constraint-mode coordinates) and
+/// `modes` fixed-interface modes. Throws std::invalid_argument (craig_bampton's messages, or a
+/// node that is not in the block).
+ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
+                          int modes);
+
+}  // namespace alphaflex

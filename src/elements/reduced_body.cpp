@@ -1,0 +1,172 @@
+// Reduced flexible body on a floating frame (header; docs/theory/reduced_bodies.md).
+#include "alphaflex/elements/reduced_body.hpp"
+
+#include <stdexcept>
+#include <unsupported/Eigen/AutoDiff>
+
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
+
+namespace alphaflex {
+namespace {
+
+template <class S>
+using VecS = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+template <class S>
+using MatS = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+template <class S>
+using V3 = Eigen::Matrix<S, 3, 1>;
+
+// 𝕄(ξ) (header) for any scalar.
+template <class S>
+MatS<S> mass_of(const ReducedBodyMatrices& d, const VecS<S>& xi) {
+  const int m = d.elastic(), n = 6 + m;
+  MatS<S> A = d.M0.template cast<S>();
+  for (int i = 0; i < m; ++i)
+    for (int c = 0; c < n; ++c)
+      for (int r = 0; r < 3; ++r) {
+        A(3 + r, c) += xi[i] * d.C[static_cast<size_t>(i)](r, c);
+        A(c, 3 + r) += xi[i] * d.C[static_cast<size_t>(i)](r, c);
+      }
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) A(3 + r, 3 + c) += xi[i] * xi[j] * d.M2[static_cast<size_t>(i * m + j)](r, c);
+  return A;
+}
+
+// (∂𝕄/∂ξᵢ) w = Ĉᵢ w + Ĉᵢᵀ w + Σⱼ ξⱼ (M₂ᵢⱼ + M₂ⱼᵢ) w_ω (Ĉᵢ: Cᵢ in the ω rows).
+template <class S>
+VecS<S> mass_derivative_times(const ReducedBodyMatrices& d, const VecS<S>& xi, int i, const VecS<S>& w) {
+  const int m = d.elastic(), n = 6 + m;
+  const Eigen::MatrixXd& Ci = d.C[static_cast<size_t>(i)];
+  VecS<S> out = VecS<S>::Zero(n);
+  for (int c = 0; c < n; ++c)
+    for (int r = 0; r < 3; ++r) {
+      out[3 + r] += Ci(r, c) * w[c];
+      out[c] += Ci(r, c) * w[3 + r];
+    }
+  for (int j = 0; j < m; ++j) {
+    const Eigen::Matrix3d B = d.M2[static_cast<size_t>(i * m + j)] + d.M2[static_cast<size_t>(j * m + i)];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) out[3 + r] += xi[j] * B(r, c) * w[3 + c];
+  }
+  return out;
+}
+
+template <class S>
+V3<S> cross(const V3<S>& a, const V3<S>& b) {
+  return V3<S>(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
+}
+
+}  // namespace
+
+Eigen::MatrixXd ReducedBodyMatrices::mass_matrix(const Eigen::VectorXd& xi) const { return mass_of<double>(*this, xi); }
+
+void ReducedBodyMatrices::check() const {
+  const int m = elastic(), n = 6 + m;
+  if (K.cols() != m || M0.rows() != n || M0.cols() != n || static_cast<int>(C.size()) != m || static_cast<int>(M2.size()) != m * m)
+    throw std::invalid_argument("reduced body: the matrices' sizes do not agree with " + std::to_string(m) + " elastic coordinates");
+  for (const Eigen::MatrixXd& c : C)
+    if (c.rows() != 3 || c.cols() != n) throw std::invalid_argument("reduced body: a coupling matrix is not 3 x (6 + m)");
+  if ((M0 - M0.transpose()).norm() > 1e-12 * M0.norm() || (K - K.transpose()).norm() > 1e-12 * (K.norm() + 1e-300))
+    throw std::invalid_argument("reduced body: M0 and K must be symmetric");
+}
+
+ReducedBody::ReducedBody(std::string name, int frame, const std::vector<int>& coordinates, ReducedBodyMatrices matrices,
+                         const Eigen::Vector3d& gravity)
+    : Element(std::move(name), [&] {
+        std::vector<int> n{frame};
+        n.insert(n.end(), coordinates.begin(), coordinates.end());
+        return n;
+      }()),
+      m_(std::move(matrices)), g_(gravity) {
+  m_.check();
+  if (static_cast<int>(coordinates.size()) != m_.elastic())
+    throw std::invalid_argument("reduced body: " + std::to_string(coordinates.size()) + " coordinate nodes for " +
+                                std::to_string(m_.elastic()) + " elastic coordinates");
+}
+
+template <class S>
+Eigen::Matrix<S, Eigen::Dynamic, 1> ReducedBody::residual(const Eigen::Matrix<S, 3, 3>& R, const VecS<S>& xi, const VecS<S>& v,
+                                                          const VecS<S>& a, double load_factor) const {
+  const int m = m_.elastic(), n = 6 + m;
+  const V3<S> xd = v.template head<3>(), om = v.template segment<3>(3);
+  const V3<S> u = R.transpose() * xd;
+  V3<S> acc = a.template head<3>();
+  for (int k = 0; k < 3; ++k) acc[k] -= load_factor * g_[k];
+  const V3<S> ud = V3<S>(R.transpose() * acc) - cross<S>(om, u);  // u̇ = Rᵀ(ẍ − g) − ω × u
+  VecS<S> w(n), wd(n);
+  w << u, om, v.tail(m);
+  wd << ud, a.template segment<3>(3), a.tail(m);
+  const MatS<S> Mx = mass_of<S>(m_, xi);
+  const VecS<S> h = Mx * w;
+  VecS<S> hd = Mx * wd;
+  VecS<S> r(n);
+  for (int i = 0; i < m; ++i) {
+    const VecS<S> dMw = mass_derivative_times<S>(m_, xi, i, w);
+    hd += v[6 + i] * dMw;  // Σ ξ̇ᵢ ∂𝕄/∂ξᵢ w
+    r[6 + i] = -0.5 * w.dot(dMw);
+  }
+  const V3<S> hu = h.template head<3>(), hw = h.template segment<3>(3);
+  r.template head<3>() = R * V3<S>(hd.template head<3>() + cross<S>(om, hu));
+  r.template segment<3>(3) = hd.template segment<3>(3) + cross<S>(om, hw) + cross<S>(u, hu);
+  for (int i = 0; i < m; ++i) {
+    S k = S(0.0);
+    for (int j = 0; j < m; ++j) k += m_.K(i, j) * xi[j];
+    r[6 + i] += hd[6 + i] + k;
+  }
+  return r;
+}
+
+void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+  const int m = m_.elastic(), n = 6 + m;
+  const Pose<double> f = pose_of(s.q.data());
+  const Eigen::VectorXd xi = s.q.segment(7, m);
+  if (!tangent) {
+    out.r += residual<double>(f.R, xi, s.v, s.qdd, s.load_factor);
+    return;
+  }
+  // Exact K, C, M by forward AD: the variables are δθ (R → R(I + δθ^), the same first derivative
+  // as R exp(δθ^)), ξ, v and q̈. r does not depend on the frame's position.
+  using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
+  const int nv = 3 + m + 2 * n;
+  Eigen::Matrix<AD, 3, 1> dth;
+  for (int k = 0; k < 3; ++k) dth[k] = AD(0.0, nv, k);
+  Eigen::Matrix<AD, 3, 3> W;
+  W << AD(1.0), -dth[2], dth[1], dth[2], AD(1.0), -dth[0], -dth[1], dth[0], AD(1.0);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      if (W(i, j).derivatives().size() == 0) W(i, j).derivatives() = Eigen::VectorXd::Zero(nv);
+    }
+  const Eigen::Matrix<AD, 3, 3> R = f.R.cast<AD>() * W;
+  VecS<AD> xa(m), va(n), aa(n);
+  for (int i = 0; i < m; ++i) xa[i] = AD(xi[i], nv, 3 + i);
+  for (int k = 0; k < n; ++k) {
+    va[k] = AD(s.v[k], nv, 3 + m + k);
+    aa[k] = AD(s.qdd[k], nv, 3 + m + n + k);
+  }
+  const VecS<AD> r = residual<AD>(R, xa, va, aa, s.load_factor);
+  for (int i = 0; i < n; ++i) {
+    out.r[i] += r[i].value();
+    const Eigen::VectorXd& d = r[i].derivatives();
+    if (d.size() == 0) continue;  // a constant entry
+    for (int k = 0; k < 3; ++k) out.K(i, 3 + k) += d[k];
+    for (int j = 0; j < m; ++j) out.K(i, 6 + j) += d[3 + j];
+    for (int j = 0; j < n; ++j) {
+      out.C(i, j) += d[3 + m + j];
+      out.M(i, j) += d[3 + m + n + j];
+    }
+  }
+}
+
+double ReducedBody::elastic_energy(const Eigen::VectorXd& q) const {
+  const Eigen::VectorXd xi = q.segment(7, m_.elastic());
+  return 0.5 * xi.dot(m_.K * xi);
+}
+
+template Eigen::Matrix<double, Eigen::Dynamic, 1> ReducedBody::residual<double>(const Eigen::Matrix3d&, const Eigen::VectorXd&,
+                                                                                const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                                                                double) const;
+
+}  // namespace alphaflex

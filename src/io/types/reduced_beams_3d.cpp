@@ -1,0 +1,99 @@
+// `beams` … `reduction:` (issue 19): a spatial beam block modelled as one reduced flexible body — a
+// floating frame (the pose of the first interface point, an ordinary Frame3D node) and elastic
+// amplitudes in a Craig–Bampton basis computed from the block's own elements with that point
+// clamped (docs/theory/reduced_bodies.md, modal/superelement.hpp). `rigid` keeps no amplitude: the
+// block's rigid mass properties on the frame.
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "alphaflex/elements/reduced_body.hpp"
+#include "alphaflex/modal/superelement.hpp"
+#include "reduced_beams_3d.hpp"
+
+namespace alphaflex::scene_detail {
+
+const Schema& reduction_schema() {
+  // Herting's free-interface basis is not built: the schema names the methods that are.
+  static const Schema s{"beams.reduction", {
+      {"method", KeyType::Choice, "–", kRequired, "`craig_bampton`: constraint modes of the other interface points and `modes` "
+                                                  "fixed-interface normal modes; `rigid`: no elastic amplitude", {}, "", "", {"craig_bampton", "rigid"}},
+      {"modes", KeyType::Integer, "–", "– (**required** for `craig_bampton`)", "fixed-interface normal modes kept, at most the block's "
+                                                                             "coordinates minus the interface's", Range::non_negative()},
+      {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block; the first carries the floating frame"}}};
+  return s;
+}
+
+void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, const BeamSection& section, const Eigen::Vector3d& orient) {
+  const YAML::Node rn = it.keys.node("reduction");
+  const std::string at = it.at("reduction");
+  if (!rn.IsMap()) it.rd.fail(rn, at, "expected a map {method: craig_bampton | rigid, modes: k, interface: [points]}");
+  const Section r(it.rd, rn, at, reduction_schema());
+  const bool rigid = r.choice("method") == 1;
+  if (!rigid) it.rd.need(rn, "modes", at);
+  const int modes = rigid ? 0 : r.integer("modes");
+  const std::vector<std::string> names = r.texts("interface");
+  if (names.empty()) it.rd.fail(rn["interface"], at + ".interface", "names no point: the first interface point carries the body's frame");
+  // The interface points: named mesh points on the block.
+  std::map<int, int> in_block;  // mesh node → scratch node
+  for (const auto& e : block.elements)
+    for (int m : e) in_block.emplace(m, -1);
+  const MeshBlocks& mb = it.sb.blocks;  // NOLINT: read only here
+  std::vector<int> mesh_interface;
+  for (const std::string& name : names) {
+    int found = -1;
+    for (const auto& [m, pn] : mb.point_name)
+      if (pn == name && in_block.count(m)) found = m;
+    if (found < 0)
+      it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is not a named mesh point of group '" + block.name + "'");
+    mesh_interface.push_back(found);
+  }
+  // The frame node of the run's model first, so that the scratch block is reduced about its pose
+  // (it may be shared with another block that made it).
+  int frame = -1;
+  Model scratch;
+  const int m0 = mesh_interface.front();
+  const std::vector<int> elements = add_beam_elements(it, block, section, orient, scratch, [&](int m, const Eigen::VectorXd& q0) {
+    int& id = in_block[m];
+    if (id >= 0) return id;
+    Node nd;
+    nd.kind = NodeKind::Frame3D;
+    nd.name = std::to_string(m);
+    nd.q0 = q0;
+    if (m == m0) {
+      frame = block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6));
+      nd.q0 = it.model.node(frame).q0;
+    }
+    nd.v0 = Eigen::VectorXd::Zero(6);
+    return id = scratch.add_node(nd);
+  });
+  std::vector<int> others;
+  for (size_t i = 1; i < mesh_interface.size(); ++i) others.push_back(in_block.at(mesh_interface[i]));
+  ReducedBlock rb;
+  try {
+    rb = reduce_block(scratch, assemble_block(scratch, elements), in_block.at(m0), rigid ? std::vector<int>{} : others, modes);
+  } catch (const std::invalid_argument& e) {
+    it.rd.fail(rn, at, "block '" + it.name + "': " + e.what());
+  }
+  // The block's other mesh nodes have no node in the run's model: their motion is the frame's and
+  // the amplitudes' (ReducedBlock::node_pose).
+  for (const auto& [m, id] : in_block)
+    if (m != m0) {
+      it.sb.blocks.reduced.emplace(m, it.name);
+      const auto pn = mb.point_name.find(m);
+      if (pn != mb.point_name.end()) it.sb.reduced_points.emplace(pn->second, it.name);
+    }
+  std::vector<int> amplitudes;
+  for (int i = 0; i < rb.matrices.elastic(); ++i) {
+    Node c;
+    c.name = it.name + ":xi" + std::to_string(i);
+    c.kind = NodeKind::LineParticle2D;  // one vector-space unknown
+    c.q0 = Eigen::VectorXd::Zero(1);
+    c.v0 = Eigen::VectorXd::Zero(1);
+    if (it.model.find_node(c.name) >= 0) it.rd.fail(it.node, it.path, "node '" + c.name + "' exists already");
+    amplitudes.push_back(it.model.add_node(c));
+  }
+  it.model.add_element(std::make_unique<ReducedBody>(it.name, frame, amplitudes, rb.matrices, it.sb.gravity));
+}
+
+}  // namespace alphaflex::scene_detail

@@ -1,0 +1,267 @@
+// Component mode synthesis of a flexible block (docs/theory/reduced_bodies.md, "Superelement").
+#include "alphaflex/modal/superelement.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "alphaflex/core/rotation.hpp"
+#include "alphaflex/model/model.hpp"
+#include "alphaflex/model/spatial_kernel.hpp"
+
+namespace alphaflex {
+
+int BlockMatrices::row_of(int node, int k) const {
+  const auto it = std::lower_bound(nodes.begin(), nodes.end(), node);
+  if (it == nodes.end() || *it != node) return -1;
+  return offsets[static_cast<size_t>(it - nodes.begin())] + k;
+}
+
+BlockMatrices assemble_block(const Model& model, const std::vector<int>& element_ids) {
+  if (element_ids.empty()) throw std::invalid_argument("assemble_block: the block has no elements");
+  BlockMatrices b;
+  for (int e : element_ids)
+    for (int n : model.elements().at(static_cast<size_t>(e))->nodes()) b.nodes.push_back(n);
+  std::sort(b.nodes.begin(), b.nodes.end());
+  b.nodes.erase(std::unique(b.nodes.begin(), b.nodes.end()), b.nodes.end());
+  int n = 0;
+  for (int id : b.nodes) {
+    b.offsets.push_back(n);
+    n += model.node(id).ndof;
+  }
+  b.K = Eigen::MatrixXd::Zero(n, n);
+  b.M = Eigen::MatrixXd::Zero(n, n);
+  // The undeformed state at rest: K is the linear (material) stiffness, M the consistent mass;
+  // velocity-dependent terms vanish (Ω = 0), so the linearization is the block's linear model.
+  MechanicalState s = model.initial_state();
+  s.v.setZero();
+  s.qdd.setZero();
+  LocalResidual out;
+  for (int e : element_ids) {
+    const Element& el = *model.elements()[static_cast<size_t>(e)];
+    const LocalState ls = model.local_state(el, s);
+    out.reset(static_cast<int>(ls.v.size()), true);
+    el.evaluate(ls, out, true);
+    std::vector<int> rows;
+    for (int node : el.nodes())
+      for (int k = 0; k < model.node(node).ndof; ++k) rows.push_back(b.row_of(node, k));
+    for (size_t i = 0; i < rows.size(); ++i)
+      for (size_t j = 0; j < rows.size(); ++j) {
+        b.K(rows[i], rows[j]) += out.K(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+        b.M(rows[i], rows[j]) += out.M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+      }
+  }
+  return b;
+}
+
+namespace {
+// The interior must be held by the interface: K_ii positive definite. The pivots of its Cholesky
+// factor measure it (a free rigid motion of the interior gives a pivot at round-off).
+Eigen::LLT<Eigen::MatrixXd> check_held(const Eigen::MatrixXd& Kii) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(Kii);
+  const Eigen::VectorXd d = Eigen::MatrixXd(llt.matrixL()).diagonal();
+  if (llt.info() != Eigen::Success || !(d.minCoeff() > 1e-7 * d.maxCoeff()))
+    throw std::invalid_argument("the interface does not hold the block: its interior can move without strain "
+                                "(a mechanism or a free part); add interface points or a support");
+  return llt;
+}
+}  // namespace
+
+Superelement craig_bampton(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const std::vector<int>& boundary, int modes) {
+  const int n = static_cast<int>(K.rows());
+  if (K.cols() != n || M.rows() != n || M.cols() != n) throw std::invalid_argument("craig_bampton: K and M must be square and of one size");
+  if (boundary.empty())
+    throw std::invalid_argument("the block has no interface coordinates: a reduced block needs interface points "
+                                "(where joints or supports attach) to define its constraint modes");
+  std::vector<char> is_boundary(static_cast<size_t>(n), 0);
+  for (int r : boundary) {
+    if (r < 0 || r >= n) throw std::invalid_argument("craig_bampton: interface coordinate " + std::to_string(r) + " is not in the block");
+    if (is_boundary[static_cast<size_t>(r)]) throw std::invalid_argument("craig_bampton: interface coordinate " + std::to_string(r) + " is given twice");
+    is_boundary[static_cast<size_t>(r)] = 1;
+  }
+  const int nb = static_cast<int>(boundary.size()), ni = available_modes(n, nb);
+  if (modes < 0 || modes > ni) {
+    std::ostringstream os;
+    os << "asks for " << modes << " fixed-interface modes; the block has " << ni << " (" << n
+       << " coordinates, " << nb << " on the interface)";
+    throw std::invalid_argument(os.str());
+  }
+  std::vector<int> interior;
+  for (int r = 0; r < n; ++r)
+    if (!is_boundary[static_cast<size_t>(r)]) interior.push_back(r);
+  auto block = [&](const Eigen::MatrixXd& A, const std::vector<int>& rows, const std::vector<int>& cols) {
+    Eigen::MatrixXd B(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+    for (size_t i = 0; i < rows.size(); ++i)
+      for (size_t j = 0; j < cols.size(); ++j) B(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = A(rows[i], cols[j]);
+    return B;
+  };
+  Superelement se;
+  se.boundary = boundary;
+  se.T = Eigen::MatrixXd::Zero(n, nb + modes);
+  for (int c = 0; c < nb; ++c) se.T(boundary[static_cast<size_t>(c)], c) = 1.0;
+  if (ni > 0) {
+    const Eigen::MatrixXd Kii = block(K, interior, interior), Mii = block(M, interior, interior);
+    const Eigen::LLT<Eigen::MatrixXd> llt = check_held(Kii);
+    // Static constraint modes Ψ = −K_ii⁻¹ K_ib (Craig & Bampton 1968, eq. 9).
+    const Eigen::MatrixXd Psi = -llt.solve(block(K, interior, boundary));
+    for (size_t i = 0; i < interior.size(); ++i) se.T.row(interior[i]).head(nb) = Psi.row(static_cast<Eigen::Index>(i));
+    if (modes > 0) {
+      // Fixed-interface normal modes: K_ii φ = ω² M_ii φ, M-orthonormal, ascending.
+      const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kii, Mii, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+      if (es.info() != Eigen::Success) throw std::invalid_argument("the block's mass matrix is not positive definite on its interior");
+      se.frequencies.resize(modes);
+      for (int j = 0; j < modes; ++j) {
+        se.frequencies[j] = std::sqrt(std::max(es.eigenvalues()[j], 0.0)) / (2.0 * M_PI);
+        for (size_t i = 0; i < interior.size(); ++i) se.T(interior[i], nb + j) = es.eigenvectors()(static_cast<Eigen::Index>(i), j);
+      }
+    }
+  }
+  se.K = se.T.transpose() * K * se.T;
+  se.M = se.T.transpose() * M * se.T;
+  // Symmetric to round-off by construction; make it exact so downstream factorizations see it.
+  se.K = 0.5 * (se.K + se.K.transpose()).eval();
+  se.M = 0.5 * (se.M + se.M.transpose()).eval();
+  return se;
+}
+
+RigidMassProperties rigid_mass_properties(const Model& model, const BlockMatrices& block) {
+  const int n = static_cast<int>(block.K.rows());
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, 6);
+  for (size_t a = 0; a < block.nodes.size(); ++a) {
+    const Node& nd = model.node(block.nodes[a]);
+    if (!nd.spatial()) throw std::invalid_argument("rigid_mass_properties: node '" + nd.name + "' is not a spatial frame");
+    const Pose<double> p = pose_of(nd.q0.data());
+    const int o = block.offsets[a];
+    // δx_j = δx₀ + δθ₀ × X_j, δθ_j = R_jᵀ δθ₀ (δθ_j in the node frame).
+    G.block<3, 3>(o, 0).setIdentity();
+    G.block<3, 3>(o, 3) = -hat(p.x);
+    G.block<3, 3>(o + 3, 3) = p.R.transpose();
+  }
+  const Eigen::MatrixXd R = G.transpose() * block.M * G;
+  RigidMassProperties mp;
+  mp.mass = R.topLeftCorner<3, 3>().trace() / 3.0;
+  if (!(mp.mass > 0.0)) throw std::invalid_argument("rigid_mass_properties: the block has no mass");
+  // Coupling block −m ĉ (kinetic energy m v₀·(ω × c)).
+  const Eigen::Matrix3d C = -R.block<3, 3>(0, 3) / mp.mass;
+  mp.centre = Eigen::Vector3d(0.5 * (C(2, 1) - C(1, 2)), 0.5 * (C(0, 2) - C(2, 0)), 0.5 * (C(1, 0) - C(0, 1)));
+  const Eigen::Vector3d c = mp.centre;
+  const Eigen::Matrix3d Jo = 0.5 * (R.block<3, 3>(3, 3) + R.block<3, 3>(3, 3).transpose());
+  // Parallel-axis theorem: J_O = J_c + m (|c|² I − c cᵀ).
+  mp.inertia = Jo - mp.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  return mp;
+}
+
+}  // namespace alphaflex
+
+namespace alphaflex {
+
+void ReducedBlock::node_pose(size_t a, const Eigen::Vector3d& xf, const Eigen::Matrix3d& Rf, const Eigen::VectorXd& xi,
+                             Eigen::Vector3d& x, Eigen::Matrix3d& R) const {
+  const Eigen::VectorXd d = shapes[a] * xi;
+  x = xf + Rf * (positions[a] + d.head<3>());
+  R = Rf * rotations[a] * exp_so3(Eigen::Vector3d(d.tail<3>()));
+}
+
+ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
+                          int modes) {
+  const int n = static_cast<int>(block.K.rows());
+  if (block.row_of(frame_node) < 0)
+    throw std::invalid_argument("the interface point '" + model.node(frame_node).name + "' is not a node of the block");
+  for (int id : block.nodes)
+    if (!model.node(id).spatial()) throw std::invalid_argument("reduce_block: node '" + model.node(id).name + "' is not a spatial frame");
+  // Coordinates without the frame node's (clamped: the frame carries the rigid motion).
+  const int f0 = block.row_of(frame_node);
+  std::vector<int> keep, position(static_cast<size_t>(n), -1);
+  for (int r = 0; r < n; ++r)
+    if (r < f0 || r >= f0 + 6) {
+      position[static_cast<size_t>(r)] = static_cast<int>(keep.size());
+      keep.push_back(r);
+    }
+  std::vector<int> boundary;
+  for (int id : interface_nodes) {
+    if (block.row_of(id) < 0)
+      throw std::invalid_argument("the interface point '" + model.node(id).name + "' is not a node of the block");
+    if (id == frame_node) continue;
+    for (int k = 0; k < 6; ++k) boundary.push_back(position[static_cast<size_t>(block.row_of(id, k))]);
+  }
+  const Eigen::Index nk = static_cast<Eigen::Index>(keep.size());
+  Eigen::MatrixXd Kc(nk, nk), Mc(nk, nk);
+  for (Eigen::Index i = 0; i < nk; ++i)
+    for (Eigen::Index j = 0; j < nk; ++j) {
+      Kc(i, j) = block.K(keep[i], keep[j]);
+      Mc(i, j) = block.M(keep[i], keep[j]);
+    }
+  ReducedBlock rb;
+  rb.frame_node = frame_node;
+  // A block held only by its frame node has no constraint modes; Craig–Bampton with the frame
+  // clamped then needs no interface coordinates (the clamp is the interface).
+  if (boundary.empty()) {
+    const int ni = static_cast<int>(nk);
+    if (modes < 0 || modes > ni) {
+      std::ostringstream os;
+      os << "asks for " << modes << " fixed-interface modes; the block has " << ni << " (" << n << " coordinates, 6 on the interface)";
+      throw std::invalid_argument(os.str());
+    }
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kc, Mc, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+    if (es.info() != Eigen::Success) throw std::invalid_argument("the block's mass matrix is not positive definite");
+    // Held by the stiffness alone: a ratio of eigenvalues ω² would also compare the tiny rotary
+    // inertias of a thin section and refuse a sound block.
+    check_held(Kc);
+    Superelement& se = rb.superelement;
+    se.T = es.eigenvectors().leftCols(modes);
+    se.frequencies.resize(modes);
+    for (int j = 0; j < modes; ++j) se.frequencies[j] = std::sqrt(es.eigenvalues()[j]) / (2.0 * M_PI);
+    se.K = se.T.transpose() * Kc * se.T;
+    se.M = se.T.transpose() * Mc * se.T;
+    se.K = 0.5 * (se.K + se.K.transpose()).eval();
+    se.M = 0.5 * (se.M + se.M.transpose()).eval();
+  } else {
+    rb.superelement = craig_bampton(Kc, Mc, boundary, modes);
+  }
+  const Superelement& se = rb.superelement;
+  const int m = static_cast<int>(se.T.cols());
+  // Φ on all block rows (zero on the frame node's).
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(n, m);
+  for (Eigen::Index i = 0; i < nk; ++i) Phi.row(keep[i]) = se.T.row(i);
+  const Pose<double> F = pose_of(model.node(frame_node).q0.data());
+  // Velocities of the mesh in the floating frame (translations in its axes, rotations in the node
+  // frames): 𝒱 = P₀ w + Σᵢ ξᵢ Dᵢ ω, the mass in the same components M̄ = Qᵀ M Q (Q turns the
+  // translations from the frame's axes to the world's).
+  Eigen::MatrixXd P0 = Eigen::MatrixXd::Zero(n, 6 + m), Q = Eigen::MatrixXd::Identity(n, n);
+  std::vector<Eigen::MatrixXd> D(static_cast<size_t>(m), Eigen::MatrixXd::Zero(n, 3));
+  for (size_t a = 0; a < block.nodes.size(); ++a) {
+    const Pose<double> p = pose_of(model.node(block.nodes[a]).q0.data());
+    const int o = block.offsets[a];
+    const Eigen::Vector3d X = F.R.transpose() * (p.x - F.x);
+    const Eigen::Matrix3d Rloc = F.R.transpose() * p.R;
+    Eigen::MatrixXd S(6, m);
+    S.topRows<3>() = F.R.transpose() * Phi.middleRows(o, 3);
+    S.bottomRows<3>() = Phi.middleRows(o + 3, 3);
+    rb.positions.push_back(X);
+    rb.rotations.push_back(Rloc);
+    rb.shapes.push_back(S);
+    Q.block<3, 3>(o, o) = F.R;
+    P0.block<3, 3>(o, 0).setIdentity();
+    P0.block<3, 3>(o, 3) = -hat<double>(X);
+    P0.block<3, 3>(o + 3, 3) = Rloc.transpose();
+    P0.block(o, 6, 6, m) = S;
+    for (int i = 0; i < m; ++i) D[static_cast<size_t>(i)].block<3, 3>(o, 0) = -hat<double>(Eigen::Vector3d(S.col(i).head<3>()));
+  }
+  const Eigen::MatrixXd Mbar = Q.transpose() * block.M * Q;
+  ReducedBodyMatrices& d = rb.matrices;
+  d.M0 = P0.transpose() * Mbar * P0;
+  d.M0 = 0.5 * (d.M0 + d.M0.transpose()).eval();
+  std::vector<Eigen::MatrixXd> MD(static_cast<size_t>(m));
+  for (int i = 0; i < m; ++i) {
+    MD[static_cast<size_t>(i)] = Mbar * D[static_cast<size_t>(i)];
+    d.C.push_back(MD[static_cast<size_t>(i)].transpose() * P0);
+  }
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) d.M2.push_back(D[static_cast<size_t>(i)].transpose() * MD[static_cast<size_t>(j)]);
+  d.K = se.K;
+  return rb;
+}
+
+}  // namespace alphaflex
