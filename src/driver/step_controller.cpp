@@ -91,6 +91,10 @@ std::string FixedSteps::shortened_last_step(double t, bool restarted) const {
 
 // ---- Cut-back --------------------------------------------------------------------------------------
 
+// st_.cuts_in_row counts the halvings in force: a failure adds one, a doubling back takes one off.
+// A converged step does not clear it (it used to: then a step that failed again after one converged
+// step was halved N more times, and cycles of failure and success took h down without limit,
+// 5e-3 s to 2e-89 s on the undamped slider-crank), so h ≥ h/2^N holds for the whole run.
 bool CutBack::newton_failed(const StepPlan& p) {
   if (st_.cuts_in_row >= max_cuts_) return false;
   st_.h = 0.5 * p.h;
@@ -100,12 +104,23 @@ bool CutBack::newton_failed(const StepPlan& p) {
   return true;
 }
 
+std::string CutBack::too_small(const StepPlan& p) const {
+  if (st_.cuts_in_row < max_cuts_) return "";
+  std::ostringstream os;
+  os << "solver.step_cuts = " << max_cuts_ << ": the step failed at h = " << p.h << " s, solver.h = " << h0_ << " s halved "
+     << st_.cuts_in_row << " times (the halvings in force: a doubling after 4 converged steps undoes one), the smallest h the key"
+     << " allows; " << st_.newton_failures << " step cuts in the run so far. A larger solver.step_cuts allows smaller steps.";
+  return os.str();
+}
+
 bool CutBack::accept(const StepPlan&, double) {
-  st_.cuts_in_row = 0;
   if (st_.h < h0_ && ++st_.good_steps >= 4) {
     st_.h = std::min(h0_, 2.0 * st_.h);
     st_.good_steps = 0;
+    if (st_.cuts_in_row > 0) --st_.cuts_in_row;
   }
+  // Back at the scene's h (also after a restart with a smaller solver.h): no halving in force.
+  if (st_.h >= h0_) st_.cuts_in_row = 0;
   return true;
 }
 

@@ -209,9 +209,11 @@ void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopC
     try {
       rep = integrator_.step(s, p.h, p.t_next);
     } catch (const SolverError& e) {
-      if (!controller_.newton_failed(p)) stop(n + 1, e.what());
-      const std::string small = controller_.too_small(p);
-      if (!small.empty()) stop(n + 1, std::string(e.what()) + "\n  " + small);
+      // No retry: the policy's limit of h is reached (too_small says which; fixed steps have none).
+      if (!controller_.newton_failed(p)) {
+        const std::string small = controller_.too_small(p);
+        stop(n + 1, small.empty() ? std::string(e.what()) : std::string(e.what()) + "\n  " + small);
+      }
       ok = false;
     }
     if (fault_injected("internal")) throw std::runtime_error("injected fault (-af_inject_fault internal) at step " + std::to_string(n + 1));

@@ -5,8 +5,9 @@
 // step or asks for a retry with a smaller h.
 //
 //  - FixedSteps: h from the scene, the last step shortened to land on t_end (the paper's scheme).
-//  - CutBack (solver.step_cuts): a step whose Newton iteration fails is retried with h halved, up to
-//    N times in a row; h doubles back (up to the scene's h) after 4 converged steps.
+//  - CutBack (solver.step_cuts): a step whose Newton iteration fails is retried with h halved; h
+//    doubles back (up to the scene's h) after 4 converged steps; at most N halvings are in force at
+//    a time (a doubling undoes one), so h ≥ h/2^N over the whole run.
 //  - Adaptive (solver.tolerance): PI control of the local error (Gustafsson 1991; Söderlind 2002),
 //    rejection and retry, Newton failures halve h; steps land on t_end and on the output times.
 //
@@ -27,7 +28,9 @@ struct StepControllerState {
   double h_anchor = 0.0;     ///< the h the anchor counts in
   long long k = 0;           ///< steps of h_anchor since the anchor
   double error_prev = 1.0;   ///< the last accepted step's scaled error (PI controller)
-  long long cuts_in_row = 0, good_steps = 0;  ///< cut-back policy
+  /// Cut-back: the halvings of h in force (a doubling back undoes one) and the converged steps since
+  /// the last change of h. Adaptive: cuts_in_row > 0 after a rejection or a Newton failure (no growth).
+  long long cuts_in_row = 0, good_steps = 0;
   long long accepted = 0, rejected = 0, newton_failures = 0;  ///< since t = 0
   double h_min = 0.0, h_max = 0.0;  ///< smallest and largest accepted step (0: none yet)
 };
@@ -80,7 +83,8 @@ class StepController {
   /// Whether the step size changes during a run (the integrator then carries the auxiliary vector
   /// over changes of h, integrators/generalized_alpha.hpp).
   virtual bool variable() const { return true; }
-  /// A step smaller than the policy allows: the message of the failure ("" if none).
+  /// A step smaller than the policy allows (after newton_failed returned false, or a rejection):
+  /// the message of the failure, with the h reached ("" if none).
   virtual std::string too_small(const StepPlan&) const { return ""; }
   /// Whether t is a breakpoint of the scene's time functions (a kink of a load or driver, where q⃛
   /// jumps): the error estimate's history must not reach across it (driver/error_estimator.hpp).
@@ -125,11 +129,13 @@ class FixedSteps : public StepController {
   bool splits_remainder() const override { return false; }
 };
 
-/// Newton failures halve h (up to `max_cuts` times in a row); h doubles back after 4 good steps.
+/// Newton failures halve h, h doubles back after 4 good steps; at most `max_cuts` halvings in force
+/// (StepControllerState::cuts_in_row: failures add one, doublings take one off), so h ≥ h/2^max_cuts.
 class CutBack : public StepController {
  public:
   CutBack(double h, double t_end, int max_cuts) : StepController(h, t_end), h0_(h), max_cuts_(max_cuts) {}
   bool newton_failed(const StepPlan& p) override;
+  std::string too_small(const StepPlan& p) const override;
   long total_steps(long, double) const override { return -1; }
 
  protected:
