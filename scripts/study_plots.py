@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Charts of an `alphaflex study` from its CSV (docs/study.md, docs/stability.md).
 
-    /usr/bin/python3 scripts/study_plots.py OUTDIR/NAME_study.csv
+    /usr/bin/python3 scripts/study_plots.py OUTDIR/NAME_study.csv [--part I/N]
 
-`alphaflex study` calls this after writing the CSV; run it again by hand to restyle the charts
+`alphaflex study` calls this after writing the CSV (on several ranks of one node, rank r of N
+with --part r/N: each draws every N-th chart of the study); run it again by hand to restyle the charts
 (it reads only the CSVs: NAME_study.csv and, when present, NAME_history.csv and NAME_energy.csv).
 Writes next to the CSV, by the study's mode:
   convergence  NAME_work_precision.png  error vs CPU time, log-log, one line per setting (and peer)
@@ -30,6 +31,18 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 import alphaflex_results as ar  # noqa: E402
 
 MARKERS = "osD^v<>ph*"
+# --part I/N: this process writes charts I, I+N, I+2N, ... of the study (and the budget table
+# when I = 0), so that N ranks draw a study's charts at the same time. Building a figure is ~7 % of
+# a chart's time; its layout and PNG (save) are the rest, so the other charts are built and dropped.
+PART = (0, 1)
+_charts_seen = [0]
+
+
+def mine():
+    """Whether the next chart is this part's (each save() asks once, in the study's chart order)."""
+    k = _charts_seen[0]
+    _charts_seen[0] += 1
+    return k % PART[1] == PART[0]
 
 
 def read(path):
@@ -102,6 +115,9 @@ def suptitle(fig, text, fontsize=9):
 
 
 def save(fig, path):
+    if not mine():
+        plt.close(fig)
+        return
     plain_ticks(fig)
     lines = getattr(fig, "_title_lines", 0)
     top = 1.0 - (lines * 11 + 6) / (72 * fig.get_figheight()) if lines else 1.0
@@ -161,7 +177,8 @@ def budget_table(rows, names, base):
 
 def convergence(csv_path, comments, rows, base):
     names = error_names(rows)
-    budget_table(rows, names, base)
+    if PART[0] == 0:
+        budget_table(rows, names, base)
     labels = labels_in_order(rows)
     ref = next((c for c in comments if c.startswith("reference:")), "")
     cpu_note = next((c for c in comments if c.startswith("cpu:")), "")
@@ -436,9 +453,17 @@ def fidelity(csv_path, comments, rows, base):
 
 
 def main():
-    if len(sys.argv) != 2:
+    global PART
+    args = sys.argv[1:]
+    if len(args) == 3 and args[1] == "--part" and re.fullmatch(r"\d+/[1-9]\d*", args[2]):
+        i, n = (int(x) for x in args[2].split("/"))
+        if i >= n:
+            sys.exit(f"--part {args[2]}: the part must be below the number of parts")
+        PART = (i, n)
+        args = args[:1]
+    if len(args) != 1:
         sys.exit(__doc__)
-    path = sys.argv[1]
+    path = args[0]
     comments, rows = read(path)
     if not rows:
         sys.exit(f"{path}: no rows")

@@ -352,7 +352,7 @@ int main(int argc, char** argv) {
 
   int pargc = static_cast<int>(cl.petsc_argv.size()) - 1;
   char** pargv = cl.petsc_argv.data();
-  alphaflex::avoid_singleton_daemon();  // before MPI_Init: no orted for a one-rank run
+  alphaflex::prepare_mpi_start();  // before MPI_Init: no orted for a one-rank run, no network layers on one node
   // SLEPc's initialization (it initializes PETSc): EPS and PEP refuse to run without it (modes).
   PetscCall(SlepcInitialize(&pargc, &pargv, nullptr, nullptr));
   int rank = 0, size = 1;

@@ -87,12 +87,14 @@ std::vector<int> RunGroups::assign(const std::vector<double>& cost) const {
   return group;
 }
 
-void RunGroups::wait_for_all() const {
+void RunGroups::wait_for_all() const { wait_asleep(comm_); }
+
+void wait_asleep(MPI_Comm comm) {
   // A non-blocking barrier tested every millisecond: a group that is done sleeps instead of
   // spinning in a blocking collective, which would take a core from the groups still running
   // (Open MPI polls) whenever the job has no more cores than ranks.
   MPI_Request req;
-  MPI_Ibarrier(comm_, &req);
+  MPI_Ibarrier(comm, &req);
   for (int done = 0;;) {
     MPI_Test(&req, &done, MPI_STATUS_IGNORE);
     if (done) return;

@@ -1206,8 +1206,11 @@ class Study {
     }
     MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
     if (!ok) throw OutputError(err.empty() ? "cannot write the study's files (see rank 0)" : err);
-    if (rank_ == 0 && spec_.plots && opt_.plots) plot();
-    MPI_Barrier(comm_);
+    if (spec_.plots && opt_.plots) {
+      const int parts = chart_parts();
+      if (rank_ < parts) plot(parts);
+    }
+    wait_asleep(comm_);  // the ranks without charts (or fewer) must not spin while the others draw
   }
 
   static std::string field(double x) { return std::isnan(x) ? "" : num(x); }
@@ -1311,7 +1314,24 @@ class Study {
     res_.files.push_back(path);
   }
 
-  void plot() {
+  /// How many ranks draw the charts: a convergence study has three or four charts of ~1 s of CPU
+  /// each, as much as all the runs of a small study (docs/performance.md, "Studies on several
+  /// ranks"); with the default script, on one node (every rank sees the CSV rank 0 has just
+  /// written), up to three ranks each draw every N-th chart (study_plots.py --part r/N).
+  int chart_parts() const {
+    if (spec_.mode != StudyMode::Convergence || !spec_.plot_script.empty() || size_ == 1) return 1;
+    MPI_Comm node;
+    MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+    int node_size = 0;
+    MPI_Comm_size(node, &node_size);
+    MPI_Comm_free(&node);
+    int one_node = node_size == size_ ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &one_node, 1, MPI_INT, MPI_MIN, comm_);
+    return one_node ? std::min(size_, 3) : 1;
+  }
+
+  /// Rank r < parts draws its part of the charts (all of them with one part).
+  void plot(int parts) {
     const std::string script =
         spec_.plot_script.empty() ? std::string(ALPHAFLEX_SOURCE_DIR) + "/scripts/study_plots.py" : spec_.plot_script;
     std::error_code ec;
@@ -1323,12 +1343,18 @@ class Study {
       warn("no charts: " + spec_.python + " not found (study.python)");
       return;
     }
+    const std::string part = parts > 1 ? " --part " + std::to_string(rank_) + "/" + std::to_string(parts) : "";
     const std::string cmd = shell_quote(python()) + " " + shell_quote(script) + " " + shell_quote(csv_path("_study.csv")) +
-                            (opt_.verbose ? "" : " > /dev/null");
+                            part + (opt_.verbose ? "" : " > /dev/null");
     std::cout.flush();
     const int rc = std::system(cmd.c_str());
-    if (rc != 0) warn("the plotting script failed (" + cmd + " returned " + std::to_string(rc) + "); the CSV is written");
-    else if (opt_.verbose) std::cout << "charts: " << opt_.outdir << "/" << spec_.name << "_*.png" << std::endl;
+    if (rc != 0) {
+      const std::string w = "the plotting script failed (" + cmd + " returned " + std::to_string(rc) + "); the CSV is written";
+      if (rank_ == 0) warn(w);
+      else std::cerr << "alphaflex study: warning (rank " << rank_ << "): " << w << std::endl;
+    } else if (opt_.verbose && rank_ == 0) {
+      std::cout << "charts: " << opt_.outdir << "/" << spec_.name << "_*.png" << std::endl;
+    }
   }
 
   const StudySpec& spec_;

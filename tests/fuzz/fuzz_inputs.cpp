@@ -527,7 +527,7 @@ int main(int argc, char** argv) {
   PetscCall(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr));
   int pargc = 1;
   char** pargv = argv;
-  alphaflex::avoid_singleton_daemon();  // before MPI_Init: no orted when run without mpirun
+  alphaflex::prepare_mpi_start();  // before MPI_Init: no orted when run without mpirun, no network layers on one node
   PetscCall(PetscInitialize(&pargc, &pargv, nullptr, nullptr));
   int status = 0;
   {

@@ -6,7 +6,7 @@
 
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
-  alphaflex::avoid_singleton_daemon();  // before MPI_Init: no orted when run without mpirun
+  alphaflex::prepare_mpi_start();  // before MPI_Init: no orted when run without mpirun, no network layers on one node
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   const int result = RUN_ALL_TESTS();
   PetscCall(PetscFinalize());

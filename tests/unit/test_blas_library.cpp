@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "alphaflex/core/blas_library.hpp"
 #include "alphaflex/core/mpi_singleton.hpp"
@@ -73,6 +75,43 @@ TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
 
   if (saved) setenv(key, saved_value.c_str(), 1); else unsetenv(key);
   if (launcher) setenv("OMPI_COMM_WORLD_SIZE", launcher_value.c_str(), 1);
+}
+
+// Shared memory (ob1) is asked for only when every rank is on this node and the user chose no PML
+// or MTL; on several nodes, under a launcher without Open MPI's variables (srun), or over the
+// user's choice nothing is set.
+TEST(MpiStart, SharedMemoryOnlyOnOneNodeAndNotOverTheUser) {
+  const std::vector<std::string> keys{"OMPI_MCA_pml", "OMPI_MCA_mtl", "OMPI_COMM_WORLD_SIZE",
+                                      "OMPI_COMM_WORLD_LOCAL_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"};
+  std::vector<std::pair<bool, std::string>> saved;
+  for (const auto& k : keys) {
+    const char* v = std::getenv(k.c_str());
+    saved.emplace_back(v != nullptr, v ? v : "");
+  }
+  auto env = [&](std::initializer_list<std::pair<const char*, const char*>> set) {
+    for (const auto& k : keys) unsetenv(k.c_str());
+    for (const auto& [k, v] : set) setenv(k, v, 1);
+    alphaflex::prefer_shared_memory_on_one_node();
+    const char* pml = std::getenv("OMPI_MCA_pml");
+    return std::string(pml ? pml : "(unset)");
+  };
+  EXPECT_EQ(env({}), "ob1") << "a singleton is one node";
+  EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "2"}, {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"}, {"PMIX_RANK", "0"}}), "ob1");
+  EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "4"}, {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"}, {"PMIX_RANK", "0"}}), "(unset)")
+      << "ranks on two nodes need the network";
+  EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "2"}, {"PMIX_RANK", "0"}}), "(unset)") << "no local size: not known to be one node";
+  EXPECT_EQ(env({{"PMIX_RANK", "0"}}), "(unset)") << "a launcher without Open MPI's variables";
+  EXPECT_EQ(env({{"PMI_SIZE", "2"}}), "(unset)");
+  EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "2"}, {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"}, {"OMPI_MCA_pml", "ucx"}}), "ucx")
+      << "the user's PML must win";
+  EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "2"}, {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"}, {"OMPI_MCA_mtl", "psm2"}}), "(unset)")
+      << "the user's MTL must win";
+  EXPECT_EQ(env({{"OMPI_MCA_mtl", "ofi"}}), "(unset)");
+
+  for (size_t i = 0; i < keys.size(); ++i) {
+    if (saved[i].first) setenv(keys[i].c_str(), saved[i].second.c_str(), 1);
+    else unsetenv(keys[i].c_str());
+  }
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #pragma once
-// Start-up of a process that no launcher started (docs/performance.md, start-up).
+// Start-up of an MPI process (docs/performance.md, "Start-up of a small run" and "Studies on
+// several ranks").
 
 namespace alphaflex {
 
@@ -11,5 +12,20 @@ namespace alphaflex {
 /// or PMI_SIZE) and the user has not set it (an explicit setting wins). Other MPI implementations
 /// ignore the variable.
 void avoid_singleton_daemon();
+
+/// Call before MPI_Init. When every rank of the job is on this node (a singleton, or mpirun's
+/// OMPI_COMM_WORLD_LOCAL_SIZE equal to OMPI_COMM_WORLD_SIZE), the ranks talk through shared
+/// memory (Open MPI's ob1 with its vader transport) whatever else is installed, but Open MPI 4.1
+/// still opens every network layer (MTL) it was built with to choose among them; on Debian those
+/// are psm, psm2 and ofi, and libpsm2 and libpsm_infinipath each calibrate a timer when loaded, in
+/// a loop of 125 µs sleeps pinned to core 0: 0.2-0.3 s of wall time per process on this machine
+/// whether or not the hardware exists. Sets OMPI_MCA_pml=ob1 then, so that no MTL is opened.
+/// Nothing is set on several nodes, without Open MPI's variables under a launcher, or when the
+/// user chose a PML or MTL (OMPI_MCA_pml or OMPI_MCA_mtl in the environment, which is also where
+/// `mpirun --mca pml ...` puts it). Other MPI implementations ignore the variable.
+void prefer_shared_memory_on_one_node();
+
+/// Both of the above, before MPI_Init of every alphaflex executable.
+void prepare_mpi_start();
 
 }  // namespace alphaflex

@@ -26,6 +26,10 @@ int default_ranks_per_run(int unknowns, int ranks);
 /// the number of ranks, and divide it.
 std::string ranks_per_run_problem(int k, int ranks);
 
+/// Returns when every rank of `comm` has called it; waits asleep (a non-blocking barrier tested
+/// every millisecond), so that a rank that is done leaves the core to the ranks still working.
+void wait_asleep(MPI_Comm comm);
+
 /// The groups of ranks of a communicator, `k` ranks each (k divides its size; checked by the caller).
 class RunGroups {
  public:
