@@ -9,17 +9,21 @@ the swing angle by a factor > 5 (the strip's static sag, 2.6 % of L, is what rig
 the two-rank run must agree with the one-rank run to round-off."""
 import argparse
 import csv
+import glob
 import subprocess
 import sys
 
 
-def run(a, name, args, np=1):
+def run(a, name, args, np=1, timeout=60):
+    """Runs a.scene into a.out/name with the extra arguments; its sensor CSV as columns (also used by
+    reduced_fourbar.py)."""
     launcher = [a.mpirun, "--oversubscribe", "-np", str(np)] if np > 1 else []
     out = f"{a.out}/{name}"
-    r = subprocess.run(launcher + [a.exe, "run", a.scene, "-o", out] + args, capture_output=True, text=True, timeout=60)
+    r = subprocess.run(launcher + [a.exe, "run", a.scene, "-o", out] + args, capture_output=True, text=True, timeout=timeout)
     if r.returncode != 0:
         sys.exit(f"{name}: exit {r.returncode}\n{r.stderr}")
-    with open(f"{out}/reduced_pendulum.csv") as f:
+    (table,) = glob.glob(f"{out}/*.csv")
+    with open(table) as f:
         rows = list(csv.DictReader(f))
     return {k: [float(x[k]) for x in rows] for k in rows[0]}
 

@@ -2,12 +2,16 @@
 // floating frame (the pose of the first interface point, an ordinary Frame3D node) and elastic
 // amplitudes in a Craig–Bampton basis computed from the block's own elements with that point
 // clamped (docs/theory/reduced_bodies.md, modal/superelement.hpp). `rigid` keeps no amplitude: the
-// block's rigid mass properties on the frame.
+// block's rigid mass properties on the frame. Every other interface point is a Frame3D node tied
+// to the body's pose there (joints/reduced_interface_tie.hpp), so joints, loads and sensors attach
+// to it as on a full mesh.
+#include <algorithm>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include "alphaflex/elements/reduced_body.hpp"
+#include "alphaflex/joints/reduced_interface_tie.hpp"
 #include "alphaflex/modal/superelement.hpp"
 #include "reduced_beams_3d.hpp"
 
@@ -20,7 +24,8 @@ const Schema& reduction_schema() {
                                                   "fixed-interface normal modes; `rigid`: no elastic amplitude", {}, "", "", {"craig_bampton", "rigid"}},
       {"modes", KeyType::Integer, "–", "– (**required** for `craig_bampton`)", "fixed-interface normal modes kept, at most the block's "
                                                                              "coordinates minus the interface's", Range::non_negative()},
-      {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block; the first carries the floating frame"}}};
+      {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block; the first carries the floating frame, each other "
+                                                 "one gets a node tied to the body (joints, loads, sensors attach to all of them)"}}};
   return s;
 }
 
@@ -46,11 +51,14 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
       if (pn == name && in_block.count(m)) found = m;
     if (found < 0)
       it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is not a named mesh point of group '" + block.name + "'");
+    if (std::find(mesh_interface.begin(), mesh_interface.end(), found) != mesh_interface.end())
+      it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is given twice (or names the same mesh point as another entry)");
     mesh_interface.push_back(found);
   }
-  // The frame node of the run's model first, so that the scratch block is reduced about its pose
-  // (it may be shared with another block that made it).
-  int frame = -1;
+  // The interface points' nodes of the run's model first, so that the scratch block is reduced
+  // about their poses (a node may be shared with another block that made it): the first carries
+  // the floating frame, the others are tied to the body (joints/reduced_interface_tie.hpp).
+  std::map<int, int> interface_node;  // mesh node → run model node
   Model scratch;
   const int m0 = mesh_interface.front();
   const std::vector<int> elements = add_beam_elements(it, block, section, orient, scratch, [&](int m, const Eigen::VectorXd& q0) {
@@ -60,25 +68,27 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
     nd.kind = NodeKind::Frame3D;
     nd.name = std::to_string(m);
     nd.q0 = q0;
-    if (m == m0) {
-      frame = block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6));
-      nd.q0 = it.model.node(frame).q0;
+    if (std::find(mesh_interface.begin(), mesh_interface.end(), m) != mesh_interface.end()) {
+      const int run = interface_node[m] = block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6));
+      nd.q0 = it.model.node(run).q0;
     }
     nd.v0 = Eigen::VectorXd::Zero(6);
     return id = scratch.add_node(nd);
   });
+  const int frame = interface_node.at(m0);
   std::vector<int> others;
   for (size_t i = 1; i < mesh_interface.size(); ++i) others.push_back(in_block.at(mesh_interface[i]));
+  const BlockMatrices matrices = assemble_block(scratch, elements);
   ReducedBlock rb;
   try {
-    rb = reduce_block(scratch, assemble_block(scratch, elements), in_block.at(m0), rigid ? std::vector<int>{} : others, modes);
+    rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes);
   } catch (const std::invalid_argument& e) {
     it.rd.fail(rn, at, "block '" + it.name + "': " + e.what());
   }
   // The block's other mesh nodes have no node in the run's model: their motion is the frame's and
   // the amplitudes' (ReducedBlock::node_pose).
   for (const auto& [m, id] : in_block)
-    if (m != m0) {
+    if (!interface_node.count(m)) {
       it.sb.blocks.reduced.emplace(m, it.name);
       const auto pn = mb.point_name.find(m);
       if (pn != mb.point_name.end()) it.sb.reduced_points.emplace(pn->second, it.name);
@@ -94,6 +104,14 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
     amplitudes.push_back(it.model.add_node(c));
   }
   it.model.add_element(std::make_unique<ReducedBody>(it.name, frame, amplitudes, rb.matrices, it.sb.gravity));
+  // Each other interface point: its node held at node_pose by 6 equations (docs/theory/reduced_bodies.md).
+  for (size_t i = 1; i < mesh_interface.size(); ++i) {
+    const int m = mesh_interface[i];
+    const auto slot = std::lower_bound(matrices.nodes.begin(), matrices.nodes.end(), in_block.at(m));
+    const size_t a = static_cast<size_t>(slot - matrices.nodes.begin());
+    it.model.add_constraint(std::make_unique<ReducedInterfaceTie>(it.name + ":tie:" + names[i], interface_node.at(m), frame, amplitudes,
+                                                                  rb.positions[a], rb.rotations[a], rb.shapes[a]));
+  }
 }
 
 }  // namespace alphaflex::scene_detail

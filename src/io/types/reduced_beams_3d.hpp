@@ -20,7 +20,8 @@ const Schema& reduction_schema();
 
 /// A beam block with a `reduction` key: the block built on a scratch model and reduced there
 /// (modal/superelement.hpp); the run's model gets the frame node (the first interface point), one
-/// scalar node per elastic amplitude and one ReducedBody element named after the block.
+/// scalar node per elastic amplitude, one ReducedBody element named after the block, and a node
+/// with a ReducedInterfaceTie (NAME:tie:POINT) at each other interface point.
 void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, const BeamSection& section, const Eigen::Vector3d& orient);
 
 }  // namespace alphaflex::scene_detail

@@ -1,0 +1,162 @@
+// The tie of an interface node to a reduced flexible body (joints/reduced_interface_tie.hpp,
+// docs/theory/reduced_bodies.md "Interface points").
+#include "alphaflex/joints/reduced_interface_tie.hpp"
+
+#include <array>
+#include <stdexcept>
+
+namespace alphaflex {
+namespace {
+
+// Kernel variables: δx_B, δθ_B (0–5), δx_f, δθ_f (6–11), z = [u; ψ] (12–17).
+constexpr int kVars = 18;
+using Z = Eigen::Matrix<double, 6, 1>;
+using A1 = ad::FixedAD1<kVars>;
+using A2 = ad::FixedAD2<kVars>;
+using Along = ad::FixedAD2<1>;
+
+/// z_k (vector space) as variable 12 + k, inner and outer perturbation alike, no mixed part.
+A2 seeded_z2(double x, int k) {
+  A2::DerType outer;
+  for (int o = 0; o < kVars; ++o) outer[o] = A1(o == 12 + k ? 1.0 : 0.0, A1::DerType::Zero());
+  return A2(A1(x, A1::DerType::Unit(12 + k)), outer);
+}
+
+/// a + b τ + c τ²/2 with τ both the inner and the outer variable (the mixed derivative is d²/dτ²).
+Along along(double a, double b, double c) {
+  using D = ad::FixedAD1<1>;
+  return Along(D(a, D::DerType(b)), Along::DerType(D(b, D::DerType(c))));
+}
+
+/// (x + τ v_x, R(I + τ v̂ + τ² v̂²/2)) = (x, R) ∘ exp(τ v) + O(τ³).
+Pose<Along> moving(const Pose<double>& p, const Eigen::Vector3d& vx, const Eigen::Vector3d& vth) {
+  const Eigen::Matrix3d Rv = p.R * hat<double>(vth), Rvv = Rv * hat<double>(vth);
+  Pose<Along> out;
+  for (int i = 0; i < 3; ++i) out.x[i] = along(p.x[i], vx[i], 0.0);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.R(i, j) = along(p.R(i, j), Rv(i, j), Rvv(i, j));
+  return out;
+}
+
+/// Φ and ∂Φ/∂(δ_B, δ_f, z) (6 × 18) by AD1.
+void first(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z, Eigen::VectorXd& phi,
+           Eigen::Matrix<double, 6, kVars>& J) {
+  const Pose<A1> bs = kernel_detail::seeded_pose1<kVars>(b, 0), fs = kernel_detail::seeded_pose1<kVars>(f, 6);
+  Vec3<A1> u, psi;
+  for (int i = 0; i < 3; ++i) {
+    u[i] = A1(z[i], A1::DerType::Unit(12 + i));
+    psi[i] = A1(z[3 + i], A1::DerType::Unit(15 + i));
+  }
+  std::array<A1, 6> out;
+  tie.equations(bs, fs, u, psi, out.data());
+  phi.resize(6);
+  for (int i = 0; i < 6; ++i) {
+    phi[i] = out[static_cast<size_t>(i)].value();
+    J.row(i) = out[static_cast<size_t>(i)].derivatives().transpose();
+  }
+}
+
+/// H(i, j) = ∂/∂δ'_j ∂(λᵀΦ)/∂δ_i over the 18 kernel variables (outer perturbation first, as
+/// model/spatial_kernel.hpp's `second`).
+Eigen::Matrix<double, kVars, kVars> second(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z,
+                                           const Eigen::VectorXd& lambda) {
+  const Pose<A2> bs = kernel_detail::seeded_pose2<kVars>(b, 0), fs = kernel_detail::seeded_pose2<kVars>(f, 6);
+  Vec3<A2> u, psi;
+  for (int i = 0; i < 3; ++i) {
+    u[i] = seeded_z2(z[i], i);
+    psi[i] = seeded_z2(z[3 + i], 3 + i);
+  }
+  std::array<A2, 6> out;
+  tie.equations(bs, fs, u, psi, out.data());
+  Eigen::Matrix<double, kVars, kVars> H = Eigen::Matrix<double, kVars, kVars>::Zero();
+  for (int i = 0; i < 6; ++i) {
+    if (lambda[i] == 0.0) continue;
+    for (int j = 0; j < kVars; ++j) H.col(j) += lambda[i] * out[static_cast<size_t>(i)].derivatives()[j].derivatives();
+  }
+  return H;
+}
+
+}  // namespace
+
+ReducedInterfaceTie::ReducedInterfaceTie(std::string name, int tied, int frame, const std::vector<int>& amplitudes,
+                                         const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation, Eigen::MatrixXd shape)
+    : Constraint(std::move(name), [&] {
+        std::vector<int> n{tied, frame};
+        n.insert(n.end(), amplitudes.begin(), amplitudes.end());
+        return n;
+      }()),
+      position_(position),
+      rotation_(rotation),
+      shape_(std::move(shape)) {
+  if (shape_.rows() != 6 || shape_.cols() != static_cast<Eigen::Index>(amplitudes.size()))
+    throw std::invalid_argument("reduced interface tie '" + this->name() + "': the shape must have 6 rows and one column per amplitude (" +
+                                std::to_string(amplitudes.size()) + ")");
+}
+
+std::string ReducedInterfaceTie::equation_name(int k) const {
+  static const char* names[6] = {"x", "y", "z", "a2·b3", "a3·b1", "a1·b2"};
+  return k >= 0 && k < 6 ? names[k] : "";
+}
+
+Eigen::Matrix<double, 6, 1> ReducedInterfaceTie::z_of(const Eigen::VectorXd& q) const {
+  const Eigen::Index m = shape_.cols();
+  if (q.size() != 14 + m)
+    throw std::invalid_argument("reduced interface tie '" + name() + "': expected the configuration of two frames and " +
+                                std::to_string(m) + " amplitudes");
+  return shape_ * q.tail(m);
+}
+
+void ReducedInterfaceTie::evaluate(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
+  const Z z = z_of(q);
+  Eigen::Matrix<double, 6, kVars> J;
+  first(*this, pose_of(q.data()), pose_of(q.data() + 7), z, phi, J);
+  // Φ_ξ = Φ_z Φ_a: z is linear in ξ.
+  phi_q.resize(6, 12 + shape_.cols());
+  phi_q.leftCols<12>() = J.leftCols<12>();
+  phi_q.rightCols(shape_.cols()) = J.rightCols<6>() * shape_;
+}
+
+void ReducedInterfaceTie::geometric_stiffness(const Eigen::VectorXd& q, double, const Eigen::VectorXd& lambda,
+                                              Eigen::MatrixXd& k) const {
+  const Eigen::Index m = shape_.cols();
+  const Eigen::Matrix<double, kVars, kVars> H = second(*this, pose_of(q.data()), pose_of(q.data() + 7), z_of(q), lambda);
+  // Pᵀ H P with P = diag(I₁₂, Φ_a): exact, z being linear in ξ (no second derivative of z).
+  k.resize(12 + m, 12 + m);
+  k.topLeftCorner<12, 12>() = H.topLeftCorner<12, 12>();
+  k.topRightCorner(12, m) = H.topRightCorner<12, 6>() * shape_;
+  k.bottomLeftCorner(m, 12) = shape_.transpose() * H.bottomLeftCorner<6, 12>();
+  k.bottomRightCorner(m, m) = shape_.transpose() * H.bottomRightCorner<6, 6>() * shape_;
+}
+
+void ReducedInterfaceTie::acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double,
+                                            Eigen::VectorXd& c) const {
+  // d²/dτ² Φ(q ∘ exp(τ v)) at τ = 0: the frames along R(I + τv̂ + τ²v̂²/2), z + τ Φ_a ξ̇ (scleronomic).
+  const Z z = z_of(q), zdot = shape_ * v.tail(shape_.cols());
+  const Pose<Along> b = moving(pose_of(q.data()), v.segment<3>(0), v.segment<3>(3));
+  const Pose<Along> f = moving(pose_of(q.data() + 7), v.segment<3>(6), v.segment<3>(9));
+  Vec3<Along> u, psi;
+  for (int i = 0; i < 3; ++i) {
+    u[i] = along(z[i], zdot[i], 0.0);
+    psi[i] = along(z[3 + i], zdot[3 + i], 0.0);
+  }
+  std::array<Along, 6> out;
+  equations(b, f, u, psi, out.data());
+  c.resize(6);
+  for (int i = 0; i < 6; ++i) c[i] = out[static_cast<size_t>(i)].derivatives()[0].derivatives()[0];
+}
+
+JointReaction ReducedInterfaceTie::reaction(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda) const {
+  Eigen::VectorXd phi;
+  Eigen::MatrixXd J;
+  evaluate(q, t, phi, J);
+  const Eigen::VectorXd g = -J.transpose() * lambda;  // generalized force of the tie on its nodes
+  const Pose<double> b = pose_of(q.data());
+  JointReaction r;
+  r.location = b.x;
+  r.force = g.segment<3>(0);
+  r.moment = b.R * g.segment<3>(3);
+  r.frame = b.R;
+  return r;
+}
+
+}  // namespace alphaflex
