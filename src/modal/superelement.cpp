@@ -60,6 +60,10 @@ BlockMatrices assemble_block(const Model& model, const std::vector<int>& element
   return b;
 }
 
+/// Shift-and-invert with MUMPS (KSPPREONLY + PCLU), as the mechanism's modes use it; defined in
+/// modal_analysis.cpp.
+void set_mumps_shift_invert(ST st);
+
 namespace {
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
@@ -165,15 +169,8 @@ LowestModes sparse_modes(const SparseMatrix& K, const SparseMatrix& M, int k) {
     check_petsc(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
     check_petsc(EPSSetTolerances(eps, 1e-12, 500), "EPSSetTolerances");
     ST st;
-    KSP ksp;
-    PC pc;
     check_petsc(EPSGetST(eps, &st), "EPSGetST");
-    check_petsc(STSetType(st, STSINVERT), "STSetType");
-    check_petsc(STGetKSP(st, &ksp), "STGetKSP");
-    check_petsc(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-    check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
-    check_petsc(PCSetType(pc, PCLU), "PCSetType");
-    check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    set_mumps_shift_invert(st);
     check_petsc(EPSSolve(eps), "EPSSolve (fixed-interface modes)");
     PetscInt nconv = 0;
     check_petsc(EPSGetConverged(eps, &nconv), "EPSGetConverged");
@@ -356,13 +353,15 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
     const char* not_definite = "the block's mass matrix is not positive definite";
     // Held by the stiffness alone: a ratio of eigenvalues ω² would also compare the tiny rotary
     // inertias of a thin section and refuse a sound block.
+    // No modes (method rigid, or a block held at its frame only): only the check.
+    lm.vectors = Eigen::MatrixXd::Zero(nk, 0);
     if (nk <= 300 || 4 * modes > nk) {
       const Eigen::MatrixXd Kd(Kc), Md(Mc);
-      lm = dense_modes(Kd, Md, modes, not_definite);
+      if (modes > 0) lm = dense_modes(Kd, Md, modes, not_definite);
       check_held(Kd);
     } else {
       check_held(Eigen::SimplicialLDLT<SparseMatrix>(Kc));
-      lm = sparse_modes(Kc, Mc, modes);
+      if (modes > 0) lm = sparse_modes(Kc, Mc, modes);
     }
     fix_signs(lm.vectors);
     se.T = lm.vectors;

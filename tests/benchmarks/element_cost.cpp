@@ -58,6 +58,11 @@ double microseconds_per_call(const Element& e, const LocalState& s, bool tangent
   return microseconds_per_call(s, tangent, rounds, [&](LocalResidual& out) { e.evaluate(s, out, tangent); });
 }
 
+Eigen::Vector3d random3(std::mt19937& rng, double a) {
+  std::uniform_real_distribution<double> u(-a, a);
+  return Eigen::Vector3d(u(rng), u(rng), u(rng));
+}
+
 /// A reduced body (docs/theory/reduced_bodies.md) with m = 14 elastic coordinates — a link's far
 /// interface node (6 constraint modes) and 8 fixed-interface modes — and a moving deformed state.
 /// The invariants are random matrices of the right shapes and symmetries: the cost of the closed
@@ -86,11 +91,6 @@ std::unique_ptr<ReducedBody> reduced_body(std::mt19937& rng, LocalState& s) {
   s.v = 3.0 * random(n, 1);
   s.qdd = 5.0 * random(n, 1);
   return std::make_unique<ReducedBody>("link", 0, coords, d, Eigen::Vector3d(0, 0, -9.81));
-}
-
-Eigen::Vector3d random3(std::mt19937& rng, double a) {
-  std::uniform_real_distribution<double> u(-a, a);
-  return Eigen::Vector3d(u(rng), u(rng), u(rng));
 }
 
 /// The nodes' reference poses moved by O(amp) and turned by O(3 amp), with random velocities and
