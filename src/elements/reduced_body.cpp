@@ -1,6 +1,7 @@
 // Reduced flexible body on a floating frame (header; docs/theory/reduced_bodies.md).
 #include "alphaflex/elements/reduced_body.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <unsupported/Eigen/AutoDiff>
 
@@ -71,6 +72,14 @@ void ReducedBodyMatrices::check() const {
     if (c.rows() != 3 || c.cols() != n) throw std::invalid_argument("reduced body: a coupling matrix is not 3 x (6 + m)");
   if ((M0 - M0.transpose()).norm() > 1e-12 * M0.norm() || (K - K.transpose()).norm() > 1e-12 * (K.norm() + 1e-300))
     throw std::invalid_argument("reduced body: M0 and K must be symmetric");
+  // M₂ᵢⱼ = DᵢᵀM̄Dⱼ, so M₂ᵢⱼᵀ = M₂ⱼᵢ: 𝕄's quadratic part is symmetric (the closed-form tangent uses it).
+  double scale = 0.0, asym = 0.0;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      scale = std::max(scale, M2[static_cast<size_t>(i * m + j)].norm());
+      asym = std::max(asym, (M2[static_cast<size_t>(i * m + j)] - M2[static_cast<size_t>(j * m + i)].transpose()).norm());
+    }
+  if (asym > 1e-12 * scale) throw std::invalid_argument("reduced body: the quadratic inertia blocks must satisfy M2[i][j] = M2[j][i]^T");
 }
 
 ReducedBody::ReducedBody(std::string name, int frame, const std::vector<int>& coordinates, ReducedBodyMatrices matrices,
@@ -85,6 +94,15 @@ ReducedBody::ReducedBody(std::string name, int frame, const std::vector<int>& co
   if (static_cast<int>(coordinates.size()) != m_.elastic())
     throw std::invalid_argument("reduced body: " + std::to_string(coordinates.size()) + " coordinate nodes for " +
                                 std::to_string(m_.elastic()) + " elastic coordinates");
+  const int m = m_.elastic(), n = 6 + m;
+  C_.resize(3 * m, n);
+  S_.resize(3 * m, 3 * m);
+  for (int i = 0; i < m; ++i) {
+    C_.middleRows<3>(3 * i) = m_.C[static_cast<size_t>(i)];
+    for (int j = 0; j < m; ++j)
+      S_.block<3, 3>(3 * i, 3 * j) = m_.M2[static_cast<size_t>(i * m + j)] + m_.M2[static_cast<size_t>(j * m + i)];
+  }
+  S_ = 0.5 * (S_ + S_.transpose()).eval();  // symmetric to round-off (check()); exactly, for the tangent
 }
 
 template <class S>
@@ -119,16 +137,124 @@ Eigen::Matrix<S, Eigen::Dynamic, 1> ReducedBody::residual(const Eigen::Matrix<S,
   return r;
 }
 
+// Closed-form residual and exact tangent (docs/theory/reduced_bodies.md, "Closed-form residual
+// and tangent"). Notation as there: w = [u; ω; ξ̇], ẇ = [u̇; ω̇; ξ̈], 𝕄 = M₀ + E_ω C(ξ) + C(ξ)ᵀE_ωᵀ
+// + E_ω J(ξ) E_ωᵀ with C(ξ) = Σ ξᵢ Cᵢ and J(ξ) = ½ Σ ξᵢ ξⱼ Sᵢⱼ; Gᵢ = Σⱼ ξⱼ Sᵢⱼ, so that
+// (∂𝕄/∂ξᵢ) x = E_ω (Cᵢ x + Gᵢ x_ω) + Cᵢᵀ x_ω is column i of A(x); Ṁ = N = Σ ξ̇ᵢ ∂𝕄/∂ξᵢ.
 void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
+  using Eigen::Matrix3d;
+  using Eigen::MatrixXd;
+  using Eigen::Vector3d;
+  using Eigen::VectorXd;
   const int m = m_.elastic(), n = 6 + m;
-  const Pose<double> f = pose_of(s.q.data());
-  const Eigen::VectorXd xi = s.q.segment(7, m);
-  if (!tangent) {
-    out.r += residual<double>(f.R, xi, s.v, s.qdd, s.load_factor);
-    return;
+  const Matrix3d R = pose_of(s.q.data()).R;
+  const auto xi = s.q.segment(7, m);
+  const auto xid = s.v.tail(m);
+  const Vector3d om = s.v.segment<3>(3);
+  const Vector3d u = R.transpose() * s.v.head<3>();
+  const Vector3d b = R.transpose() * (s.qdd.head<3>() - s.load_factor * g_);  // Rᵀ(ẍ − g)
+  VectorXd w(n), wd(n);
+  w << u, om, xid;
+  wd << b - om.cross(u), s.qdd.segment<3>(3), s.qdd.tail(m);
+  // SX = S (ξ ⊗ I₃): its block i is Gᵢ; J = ½ Σ ξᵢ Gᵢ; C(ξ).
+  MatrixXd kx = MatrixXd::Zero(3 * m, 3);
+  for (int i = 0; i < m; ++i) kx.middleRows<3>(3 * i).diagonal().setConstant(xi[i]);
+  const MatrixXd SX = S_ * kx;
+  Matrix3d J = Matrix3d::Zero();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> Cx = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, n);
+  for (int i = 0; i < m; ++i) {
+    J += 0.5 * xi[i] * SX.middleRows<3>(3 * i);
+    Cx += xi[i] * C_.middleRows<3>(3 * i);
   }
-  // Exact K, C, M by forward AD: the variables are δθ (R → R(I + δθ^), the same first derivative
-  // as R exp(δθ^)), ξ, v and q̈. r does not depend on the frame's position.
+  MatrixXd Mm = m_.M0;
+  Mm.middleRows<3>(3) += Cx;
+  Mm.middleCols<3>(3) += Cx.transpose();
+  Mm.block<3, 3>(3, 3) += J;
+  const auto A_of = [&](const VectorXd& x) {
+    MatrixXd A(n, m);
+    const Vector3d xw = x.segment<3>(3);
+    for (int i = 0; i < m; ++i) {
+      A.col(i).noalias() = C_.middleRows<3>(3 * i).transpose() * xw;
+      A.col(i).segment<3>(3) += C_.middleRows<3>(3 * i) * x + SX.middleRows<3>(3 * i) * xw;
+    }
+    return A;
+  };
+  const MatrixXd Aw = A_of(w);
+  const VectorXd h = Mm * w;
+  const VectorXd hd = Mm * wd + Aw * xid;  // ḣ = 𝕄 ẇ + Ṁ w
+  const Vector3d hu = h.head<3>(), hw = h.segment<3>(3);
+  const Vector3d y = hd.head<3>() + om.cross(hu);
+  out.r.head<3>() += R * y;
+  out.r.segment<3>(3) += hd.segment<3>(3) + om.cross(hw) + u.cross(hu);
+  out.r.tail(m) += hd.tail(m) - 0.5 * Aw.transpose() * w + m_.K * xi;
+  if (!tangent) return;
+
+  const Matrix3d om_h = hat<double>(om), u_h = hat<double>(u);
+  // F_w = ∂(y, r_θ, r_ξ)/∂w at fixed ẇ, ξ: ∂ḣ/∂w = N + [0 | A(w)] (ξ̇ is part of w).
+  Eigen::Matrix<double, 3, Eigen::Dynamic> Cd = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, n);
+  Matrix3d Gd = Matrix3d::Zero();
+  for (int i = 0; i < m; ++i) {
+    Cd += xid[i] * C_.middleRows<3>(3 * i);
+    Gd += xid[i] * SX.middleRows<3>(3 * i);
+  }
+  MatrixXd Fw = MatrixXd::Zero(n, n);
+  Fw.middleRows<3>(3) += Cd;
+  Fw.middleCols<3>(3) += Cd.transpose();
+  Fw.block<3, 3>(3, 3) += Gd;
+  Fw.rightCols(m) += Aw;
+  Fw.topRows<3>() += om_h * Mm.topRows<3>();
+  Fw.block<3, 3>(0, 3) -= hat<double>(hu);
+  Fw.middleRows<3>(3) += om_h * Mm.middleRows<3>(3) + u_h * Mm.topRows<3>();
+  Fw.block<3, 3>(3, 3) -= hat<double>(hw);
+  Fw.block<3, 3>(3, 0) -= hat<double>(hu);
+  Fw.bottomRows(m) -= Aw.transpose();
+  // F_ξ = ∂(y, r_θ, r_ξ)/∂ξ at fixed w, ẇ: ∂ḣ/∂ξⱼ = A(ẇ)ⱼ + E_ω (Σᵢ ξ̇ᵢ Sᵢⱼ) w_ω, ∂h/∂ξ = A(w),
+  // ∂²(½ wᵀ𝕄w)/∂ξᵢ∂ξⱼ = ½ w_ωᵀ Sᵢⱼ w_ω.
+  MatrixXd kxd = MatrixXd::Zero(3 * m, 3);
+  for (int i = 0; i < m; ++i) kxd.middleRows<3>(3 * i).diagonal().setConstant(xid[i]);
+  const MatrixXd SXd = S_ * kxd;
+  MatrixXd Fx = A_of(wd);
+  MatrixXd SW(3 * m, m);
+  for (int j = 0; j < m; ++j) {
+    Fx.col(j).segment<3>(3) += SXd.middleRows<3>(3 * j) * om;
+    SW.col(j).noalias() = S_.middleCols<3>(3 * j) * om;
+  }
+  Fx.topRows<3>() += om_h * Aw.topRows<3>();
+  Fx.middleRows<3>(3) += om_h * Aw.middleRows<3>(3) + u_h * Aw.topRows<3>();
+  Fx.bottomRows(m) += m_.K;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) Fx(6 + i, j) -= 0.5 * om.dot(SW.col(j).segment<3>(3 * i));
+  // Chain rule to the unknowns: ∂w/∂(ẋ, ω, ξ̇) = diag(Rᵀ, I, I); u̇ = b − ω × u with
+  // ∂u/∂δθ = û, ∂b/∂δθ = b̂ (R → R(I + δθ^)), ∂u̇/∂ẋ = −ω̂Rᵀ, ∂u̇/∂ω = û; r_x = R y adds −R ŷ in δθ.
+  const auto Mu = Mm.leftCols<3>();
+  MatrixXd Kq(n, 3 + m);
+  Kq.leftCols<3>() = Fw.leftCols<3>() * u_h + Mu * (hat<double>(b) - om_h * u_h);
+  Kq.rightCols(m) = Fx;
+  MatrixXd Cv(n, n);
+  Cv.leftCols<3>() = (Fw.leftCols<3>() - Mu * om_h) * R.transpose();
+  Cv.middleCols<3>(3) = Fw.middleCols<3>(3) + Mu * u_h;
+  Cv.rightCols(m) = Fw.rightCols(m);
+  MatrixXd Ma = Mm;
+  Ma.leftCols<3>() = Mu * R.transpose();
+  Kq.topRows<3>() = (R * Kq.topRows<3>()).eval();
+  Kq.block<3, 3>(0, 0) -= R * hat<double>(y);
+  Cv.topRows<3>() = (R * Cv.topRows<3>()).eval();
+  Ma.topRows<3>() = (R * Ma.topRows<3>()).eval();
+  out.K.rightCols(3 + m) += Kq;
+  out.C += Cv;
+  out.M += Ma;
+}
+
+double ReducedBody::elastic_energy(const Eigen::VectorXd& q) const {
+  const Eigen::VectorXd xi = q.segment(7, m_.elastic());
+  return 0.5 * xi.dot(m_.K * xi);
+}
+
+void reduced_body_tangent_by_ad(const ReducedBody& body, const LocalState& s, LocalResidual& out) {
+  const int m = body.matrices().elastic(), n = 6 + m;
+  const Pose<double> f = pose_of(s.q.data());
+  // The variables are δθ (R → R(I + δθ^), the same first derivative as R exp(δθ^)), ξ, v and q̈;
+  // r does not depend on the frame's position.
   using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
   const int nv = 3 + m + 2 * n;
   Eigen::Matrix<AD, 3, 1> dth;
@@ -141,12 +267,12 @@ void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent
     }
   const Eigen::Matrix<AD, 3, 3> R = f.R.cast<AD>() * W;
   VecS<AD> xa(m), va(n), aa(n);
-  for (int i = 0; i < m; ++i) xa[i] = AD(xi[i], nv, 3 + i);
+  for (int i = 0; i < m; ++i) xa[i] = AD(s.q[7 + i], nv, 3 + i);
   for (int k = 0; k < n; ++k) {
     va[k] = AD(s.v[k], nv, 3 + m + k);
     aa[k] = AD(s.qdd[k], nv, 3 + m + n + k);
   }
-  const VecS<AD> r = residual<AD>(R, xa, va, aa, s.load_factor);
+  const VecS<AD> r = body.residual<AD>(R, xa, va, aa, s.load_factor);
   for (int i = 0; i < n; ++i) {
     out.r[i] += r[i].value();
     const Eigen::VectorXd& d = r[i].derivatives();
@@ -158,11 +284,6 @@ void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent
       out.M(i, j) += d[3 + m + n + j];
     }
   }
-}
-
-double ReducedBody::elastic_energy(const Eigen::VectorXd& q) const {
-  const Eigen::VectorXd xi = q.segment(7, m_.elastic());
-  return 0.5 * xi.dot(m_.K * xi);
 }
 
 template Eigen::Matrix<double, Eigen::Dynamic, 1> ReducedBody::residual<double>(const Eigen::Matrix3d&, const Eigen::VectorXd&,

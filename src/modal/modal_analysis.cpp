@@ -404,6 +404,9 @@ struct RawPair {
   Eigen::VectorXd xr, xi;
 };
 
+}  // namespace
+
+// Shared with the superelement's fixed-interface modes (superelement.cpp).
 void set_mumps_shift_invert(ST st) {
   KSP ksp;
   PC pc;
@@ -414,6 +417,8 @@ void set_mumps_shift_invert(ST st) {
   check_petsc(PCSetType(pc, PCLU), "PCSetType");
   check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
 }
+
+namespace {
 
 /// The calls EPS and PEP share under their own names.
 template <class Solver>

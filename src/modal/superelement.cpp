@@ -2,11 +2,15 @@
 #include "alphaflex/modal/superelement.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <slepceps.h>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
+#include "alphaflex/core/error.hpp"
+#include "alphaflex/core/petsc_error.hpp"
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/model/model.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
@@ -56,20 +60,155 @@ BlockMatrices assemble_block(const Model& model, const std::vector<int>& element
   return b;
 }
 
+/// Shift-and-invert with MUMPS (KSPPREONLY + PCLU), as the mechanism's modes use it; defined in
+/// modal_analysis.cpp.
+void set_mumps_shift_invert(ST st);
+
 namespace {
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+const char* const kNotHeld =
+    "the interface does not hold the block: its interior can move without strain "
+    "(a mechanism or a free part); add interface points or a support";
+
 // The interior must be held by the interface: K_ii positive definite. The pivots of its Cholesky
 // factor measure it (a free rigid motion of the interior gives a pivot at round-off).
 Eigen::LLT<Eigen::MatrixXd> check_held(const Eigen::MatrixXd& Kii) {
   const Eigen::LLT<Eigen::MatrixXd> llt(Kii);
   const Eigen::VectorXd d = Eigen::MatrixXd(llt.matrixL()).diagonal();
-  if (llt.info() != Eigen::Success || !(d.minCoeff() > 1e-7 * d.maxCoeff()))
-    throw std::invalid_argument("the interface does not hold the block: its interior can move without strain "
-                                "(a mechanism or a free part); add interface points or a support");
+  if (llt.info() != Eigen::Success || !(d.minCoeff() > 1e-7 * d.maxCoeff())) throw std::invalid_argument(kNotHeld);
   return llt;
+}
+
+// The same test on the sparse LDLᵀ factor (fill-reducing ordering): D holds the squares of the
+// Cholesky pivots, so the bound is squared.
+void check_held(const Eigen::SimplicialLDLT<SparseMatrix>& ldlt) {
+  const Eigen::VectorXd& D = ldlt.vectorD();
+  if (ldlt.info() != Eigen::Success || !(D.minCoeff() > 1e-14 * D.maxCoeff())) throw std::invalid_argument(kNotHeld);
+}
+
+SparseMatrix submatrix(const SparseMatrix& A, const std::vector<int>& rows, const std::vector<int>& cols) {
+  std::vector<int> r(static_cast<size_t>(A.rows()), -1), c(static_cast<size_t>(A.cols()), -1);
+  for (size_t i = 0; i < rows.size(); ++i) r[static_cast<size_t>(rows[i])] = static_cast<int>(i);
+  for (size_t j = 0; j < cols.size(); ++j) c[static_cast<size_t>(cols[j])] = static_cast<int>(j);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+      if (r[static_cast<size_t>(it.row())] >= 0 && c[static_cast<size_t>(it.col())] >= 0)
+        t.emplace_back(r[static_cast<size_t>(it.row())], c[static_cast<size_t>(it.col())], it.value());
+  SparseMatrix B(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+  B.setFromTriplets(t.begin(), t.end());
+  return B;
+}
+
+// Each mode's sign fixed by its product with a fixed quasi-random (Weyl sequence) vector: positive.
+// (Its largest entry would not do: the antisymmetric modes of a symmetric block have two largest
+// entries of opposite signs.) The two paths then give the same vectors.
+void fix_signs(Eigen::MatrixXd& V) {
+  Eigen::VectorXd w(V.rows());
+  for (Eigen::Index i = 0; i < V.rows(); ++i) w[i] = std::fmod(0.6180339887498949 * static_cast<double>(i + 1), 1.0) - 0.5;
+  for (Eigen::Index j = 0; j < V.cols(); ++j)
+    if (w.dot(V.col(j)) < 0.0) V.col(j) = -V.col(j);
+}
+
+struct LowestModes {
+  Eigen::VectorXd eigenvalues;  ///< ω², ascending
+  Eigen::MatrixXd vectors;      ///< M-orthonormal
+};
+
+LowestModes dense_modes(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int k, const char* not_definite) {
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+  if (es.info() != Eigen::Success) throw std::invalid_argument(not_definite);
+  return {es.eigenvalues().head(k), es.eigenvectors().leftCols(k)};
+}
+
+// A SeqAIJ copy of A on this process (the block is reduced by every rank, identically).
+Mat petsc_matrix(const SparseMatrix& A) {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor, PetscInt> R(A);
+  const PetscInt n = static_cast<PetscInt>(R.rows());
+  std::vector<PetscInt> nnz(static_cast<size_t>(n));
+  for (PetscInt i = 0; i < n; ++i) nnz[static_cast<size_t>(i)] = R.outerIndexPtr()[i + 1] - R.outerIndexPtr()[i];
+  Mat P = nullptr;
+  check_petsc(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 0, nnz.data(), &P), "MatCreateSeqAIJ");
+  for (PetscInt i = 0; i < n; ++i)
+    check_petsc(MatSetValues(P, 1, &i, nnz[static_cast<size_t>(i)], R.innerIndexPtr() + R.outerIndexPtr()[i],
+                             R.valuePtr() + R.outerIndexPtr()[i], INSERT_VALUES),
+                "MatSetValues");
+  check_petsc(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check_petsc(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  return P;
+}
+
+// The k lowest modes of (K, M), K and M symmetric positive definite: SLEPc's Krylov–Schur on the
+// shift-and-invert spectral transformation (K − σM)⁻¹M at σ = 0 (MUMPS factors K once), then the
+// Rayleigh–Ritz projection of (K, M) on the converged vectors, whose dense solution makes them
+// M-orthonormal to round-off and refines the eigenvalues.
+LowestModes sparse_modes(const SparseMatrix& K, const SparseMatrix& M, int k) {
+  PetscBool slepc = PETSC_FALSE;
+  check_petsc(SlepcInitialized(&slepc), "SlepcInitialized");
+  if (!slepc) check_petsc(SlepcInitializeNoArguments(), "SlepcInitializeNoArguments");  // unit-test drivers start PETSc only
+  const Eigen::Index n = K.rows();
+  Mat Kp = nullptr, Mp = nullptr;
+  EPS eps = nullptr;
+  Vec x = nullptr;
+  Eigen::MatrixXd V(n, k);
+  const auto destroy = [&] {
+    VecDestroy(&x);
+    EPSDestroy(&eps);
+    MatDestroy(&Kp);
+    MatDestroy(&Mp);
+  };
+  try {
+    Kp = petsc_matrix(K);
+    Mp = petsc_matrix(M);
+    check_petsc(EPSCreate(PETSC_COMM_SELF, &eps), "EPSCreate");
+    check_petsc(EPSSetOperators(eps, Kp, Mp), "EPSSetOperators");
+    check_petsc(EPSSetProblemType(eps, EPS_GHEP), "EPSSetProblemType");
+    check_petsc(EPSSetDimensions(eps, k, PETSC_DEFAULT, PETSC_DEFAULT), "EPSSetDimensions");
+    check_petsc(EPSSetTarget(eps, 0.0), "EPSSetTarget");
+    check_petsc(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE), "EPSSetWhichEigenpairs");
+    check_petsc(EPSSetTolerances(eps, 1e-12, 500), "EPSSetTolerances");
+    ST st;
+    check_petsc(EPSGetST(eps, &st), "EPSGetST");
+    set_mumps_shift_invert(st);
+    check_petsc(EPSSolve(eps), "EPSSolve (fixed-interface modes)");
+    PetscInt nconv = 0;
+    check_petsc(EPSGetConverged(eps, &nconv), "EPSGetConverged");
+    if (nconv < k)
+      throw SolverError("craig_bampton: the eigensolver converged " + std::to_string(nconv) + " of the " + std::to_string(k) +
+                        " fixed-interface modes asked");
+    check_petsc(MatCreateVecs(Kp, &x, nullptr), "MatCreateVecs");
+    for (int j = 0; j < k; ++j) {
+      PetscScalar lambda;
+      check_petsc(EPSGetEigenpair(eps, j, &lambda, nullptr, x, nullptr), "EPSGetEigenpair");
+      const PetscScalar* a = nullptr;
+      check_petsc(VecGetArrayRead(x, &a), "VecGetArrayRead");
+      V.col(j) = Eigen::Map<const Eigen::VectorXd>(a, n);
+      check_petsc(VecRestoreArrayRead(x, &a), "VecRestoreArrayRead");
+    }
+  } catch (...) {
+    destroy();
+    throw;
+  }
+  destroy();
+  const Eigen::MatrixXd KV = K * V, MV = M * V;
+  Eigen::MatrixXd Kr = V.transpose() * KV, Mr = V.transpose() * MV;
+  Kr = 0.5 * (Kr + Kr.transpose()).eval();
+  Mr = 0.5 * (Mr + Mr.transpose()).eval();
+  LowestModes r = dense_modes(Kr, Mr, k, "the block's mass matrix is not positive definite on its interior");
+  r.vectors = (V * r.vectors).eval();
+  return r;
 }
 }  // namespace
 
 Superelement craig_bampton(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const std::vector<int>& boundary, int modes) {
+  if (K.rows() != K.cols() || M.rows() != K.rows() || M.cols() != K.rows())
+    throw std::invalid_argument("craig_bampton: K and M must be square and of one size");
+  return craig_bampton(SparseMatrix(K.sparseView(0.0, 0.0)), SparseMatrix(M.sparseView(0.0, 0.0)), boundary, modes);
+}
+
+Superelement craig_bampton(const SparseMatrix& K, const SparseMatrix& M, const std::vector<int>& boundary, int modes,
+                           ModeSolver solver) {
   const int n = static_cast<int>(K.rows());
   if (K.cols() != n || M.rows() != n || M.cols() != n) throw std::invalid_argument("craig_bampton: K and M must be square and of one size");
   if (boundary.empty())
@@ -91,35 +230,43 @@ Superelement craig_bampton(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, c
   std::vector<int> interior;
   for (int r = 0; r < n; ++r)
     if (!is_boundary[static_cast<size_t>(r)]) interior.push_back(r);
-  auto block = [&](const Eigen::MatrixXd& A, const std::vector<int>& rows, const std::vector<int>& cols) {
-    Eigen::MatrixXd B(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
-    for (size_t i = 0; i < rows.size(); ++i)
-      for (size_t j = 0; j < cols.size(); ++j) B(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = A(rows[i], cols[j]);
-    return B;
-  };
   Superelement se;
   se.boundary = boundary;
   se.T = Eigen::MatrixXd::Zero(n, nb + modes);
   for (int c = 0; c < nb; ++c) se.T(boundary[static_cast<size_t>(c)], c) = 1.0;
   if (ni > 0) {
-    const Eigen::MatrixXd Kii = block(K, interior, interior), Mii = block(M, interior, interior);
-    const Eigen::LLT<Eigen::MatrixXd> llt = check_held(Kii);
-    // Static constraint modes Ψ = −K_ii⁻¹ K_ib (Craig & Bampton 1968, eq. 9).
-    const Eigen::MatrixXd Psi = -llt.solve(block(K, interior, boundary));
+    const SparseMatrix Kii = submatrix(K, interior, interior), Mii = submatrix(M, interior, interior);
+    const Eigen::MatrixXd Kib = Eigen::MatrixXd(submatrix(K, interior, boundary));
+    const bool dense = solver == ModeSolver::dense ||
+                       (solver == ModeSolver::automatic && (ni <= 300 || 4 * modes > ni));
+    const char* not_definite = "the block's mass matrix is not positive definite on its interior";
+    // Static constraint modes Ψ = −K_ii⁻¹ K_ib (Craig & Bampton 1968, eq. 9); fixed-interface
+    // normal modes K_ii φ = ω² M_ii φ, M-orthonormal, ascending.
+    Eigen::MatrixXd Psi;
+    LowestModes lm;
+    if (dense) {
+      const Eigen::MatrixXd Kd(Kii), Md(Mii);
+      Psi = -check_held(Kd).solve(Kib);
+      if (modes > 0) lm = dense_modes(Kd, Md, modes, not_definite);
+    } else {
+      const Eigen::SimplicialLDLT<SparseMatrix> ldlt(Kii);
+      check_held(ldlt);
+      Psi = -ldlt.solve(Kib);
+      if (modes > 0) lm = sparse_modes(Kii, Mii, modes);
+    }
     for (size_t i = 0; i < interior.size(); ++i) se.T.row(interior[i]).head(nb) = Psi.row(static_cast<Eigen::Index>(i));
     if (modes > 0) {
-      // Fixed-interface normal modes: K_ii φ = ω² M_ii φ, M-orthonormal, ascending.
-      const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kii, Mii, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-      if (es.info() != Eigen::Success) throw std::invalid_argument("the block's mass matrix is not positive definite on its interior");
+      fix_signs(lm.vectors);
       se.frequencies.resize(modes);
       for (int j = 0; j < modes; ++j) {
-        se.frequencies[j] = std::sqrt(std::max(es.eigenvalues()[j], 0.0)) / (2.0 * M_PI);
-        for (size_t i = 0; i < interior.size(); ++i) se.T(interior[i], nb + j) = es.eigenvectors()(static_cast<Eigen::Index>(i), j);
+        se.frequencies[j] = std::sqrt(std::max(lm.eigenvalues[j], 0.0)) / (2.0 * M_PI);
+        for (size_t i = 0; i < interior.size(); ++i) se.T(interior[i], nb + j) = lm.vectors(static_cast<Eigen::Index>(i), j);
       }
     }
   }
-  se.K = se.T.transpose() * K * se.T;
-  se.M = se.T.transpose() * M * se.T;
+  const Eigen::MatrixXd KT = K * se.T, MT = M * se.T;
+  se.K = se.T.transpose() * KT;
+  se.M = se.T.transpose() * MT;
   // Symmetric to round-off by construction; make it exact so downstream factorizations see it.
   se.K = 0.5 * (se.K + se.K.transpose()).eval();
   se.M = 0.5 * (se.M + se.M.transpose()).eval();
@@ -186,35 +333,43 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
     if (id == frame_node) continue;
     for (int k = 0; k < 6; ++k) boundary.push_back(position[static_cast<size_t>(block.row_of(id, k))]);
   }
-  const Eigen::Index nk = static_cast<Eigen::Index>(keep.size());
-  Eigen::MatrixXd Kc(nk, nk), Mc(nk, nk);
-  for (Eigen::Index i = 0; i < nk; ++i)
-    for (Eigen::Index j = 0; j < nk; ++j) {
-      Kc(i, j) = block.K(keep[i], keep[j]);
-      Mc(i, j) = block.M(keep[i], keep[j]);
-    }
+  // The block's matrices are sparse (a node couples to its elements' nodes only): everything below
+  // works on their nonzeros, O(n · bandwidth · m), not O(n³).
+  const SparseMatrix Ks = block.K.sparseView(0.0, 0.0), Ms = block.M.sparseView(0.0, 0.0);
+  const SparseMatrix Kc = submatrix(Ks, keep, keep), Mc = submatrix(Ms, keep, keep);
+  const int nk = static_cast<int>(keep.size());
   ReducedBlock rb;
   rb.frame_node = frame_node;
   // A block held only by its frame node has no constraint modes; Craig–Bampton with the frame
   // clamped then needs no interface coordinates (the clamp is the interface).
   if (boundary.empty()) {
-    const int ni = static_cast<int>(nk);
-    if (modes < 0 || modes > ni) {
+    if (modes < 0 || modes > nk) {
       std::ostringstream os;
-      os << "asks for " << modes << " fixed-interface modes; the block has " << ni << " (" << n << " coordinates, 6 on the interface)";
+      os << "asks for " << modes << " fixed-interface modes; the block has " << nk << " (" << n << " coordinates, 6 on the interface)";
       throw std::invalid_argument(os.str());
     }
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kc, Mc, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-    if (es.info() != Eigen::Success) throw std::invalid_argument("the block's mass matrix is not positive definite");
+    Superelement& se = rb.superelement;
+    LowestModes lm;
+    const char* not_definite = "the block's mass matrix is not positive definite";
     // Held by the stiffness alone: a ratio of eigenvalues ω² would also compare the tiny rotary
     // inertias of a thin section and refuse a sound block.
-    check_held(Kc);
-    Superelement& se = rb.superelement;
-    se.T = es.eigenvectors().leftCols(modes);
+    // No modes (method rigid, or a block held at its frame only): only the check.
+    lm.vectors = Eigen::MatrixXd::Zero(nk, 0);
+    if (nk <= 300 || 4 * modes > nk) {
+      const Eigen::MatrixXd Kd(Kc), Md(Mc);
+      if (modes > 0) lm = dense_modes(Kd, Md, modes, not_definite);
+      check_held(Kd);
+    } else {
+      check_held(Eigen::SimplicialLDLT<SparseMatrix>(Kc));
+      if (modes > 0) lm = sparse_modes(Kc, Mc, modes);
+    }
+    fix_signs(lm.vectors);
+    se.T = lm.vectors;
     se.frequencies.resize(modes);
-    for (int j = 0; j < modes; ++j) se.frequencies[j] = std::sqrt(es.eigenvalues()[j]) / (2.0 * M_PI);
-    se.K = se.T.transpose() * Kc * se.T;
-    se.M = se.T.transpose() * Mc * se.T;
+    for (int j = 0; j < modes; ++j) se.frequencies[j] = std::sqrt(lm.eigenvalues[j]) / (2.0 * M_PI);
+    const Eigen::MatrixXd KT = Kc * se.T, MT = Mc * se.T;
+    se.K = se.T.transpose() * KT;
+    se.M = se.T.transpose() * MT;
     se.K = 0.5 * (se.K + se.K.transpose()).eval();
     se.M = 0.5 * (se.M + se.M.transpose()).eval();
   } else {
@@ -224,12 +379,13 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
   const int m = static_cast<int>(se.T.cols());
   // Φ on all block rows (zero on the frame node's).
   Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(n, m);
-  for (Eigen::Index i = 0; i < nk; ++i) Phi.row(keep[i]) = se.T.row(i);
+  for (int i = 0; i < nk; ++i) Phi.row(keep[static_cast<size_t>(i)]) = se.T.row(i);
   const Pose<double> F = pose_of(model.node(frame_node).q0.data());
   // Velocities of the mesh in the floating frame (translations in its axes, rotations in the node
-  // frames): 𝒱 = P₀ w + Σᵢ ξᵢ Dᵢ ω, the mass in the same components M̄ = Qᵀ M Q (Q turns the
-  // translations from the frame's axes to the world's).
-  Eigen::MatrixXd P0 = Eigen::MatrixXd::Zero(n, 6 + m), Q = Eigen::MatrixXd::Identity(n, n);
+  // frames): 𝒱 = P₀ w + Σᵢ ξᵢ Dᵢ ω, the mass in the same components M̄ = Qᵀ M Q (Q, block
+  // diagonal, turns the translations from the frame's axes to the world's).
+  Eigen::MatrixXd P0 = Eigen::MatrixXd::Zero(n, 6 + m);
+  std::vector<Eigen::Triplet<double>> q;
   std::vector<Eigen::MatrixXd> D(static_cast<size_t>(m), Eigen::MatrixXd::Zero(n, 3));
   for (size_t a = 0; a < block.nodes.size(); ++a) {
     const Pose<double> p = pose_of(model.node(block.nodes[a]).q0.data());
@@ -242,16 +398,22 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
     rb.positions.push_back(X);
     rb.rotations.push_back(Rloc);
     rb.shapes.push_back(S);
-    Q.block<3, 3>(o, o) = F.R;
+    for (int r = 0; r < 3; ++r) {
+      q.emplace_back(o + 3 + r, o + 3 + r, 1.0);
+      for (int c = 0; c < 3; ++c) q.emplace_back(o + r, o + c, F.R(r, c));
+    }
     P0.block<3, 3>(o, 0).setIdentity();
     P0.block<3, 3>(o, 3) = -hat<double>(X);
     P0.block<3, 3>(o + 3, 3) = Rloc.transpose();
     P0.block(o, 6, 6, m) = S;
     for (int i = 0; i < m; ++i) D[static_cast<size_t>(i)].block<3, 3>(o, 0) = -hat<double>(Eigen::Vector3d(S.col(i).head<3>()));
   }
-  const Eigen::MatrixXd Mbar = Q.transpose() * block.M * Q;
+  SparseMatrix Q(n, n);
+  Q.setFromTriplets(q.begin(), q.end());
+  const SparseMatrix Mbar = SparseMatrix(Q.transpose()) * Ms * Q;
   ReducedBodyMatrices& d = rb.matrices;
-  d.M0 = P0.transpose() * Mbar * P0;
+  const Eigen::MatrixXd MP0 = Mbar * P0;
+  d.M0 = P0.transpose() * MP0;
   d.M0 = 0.5 * (d.M0 + d.M0.transpose()).eval();
   std::vector<Eigen::MatrixXd> MD(static_cast<size_t>(m));
   for (int i = 0; i < m; ++i) {

@@ -16,9 +16,11 @@
 //   r_θ = ḣ_ω + ω × h_ω + u × h_u
 //   r_ξ = ḣ_ξ − ½ wᵀ ∂𝕄/∂ξ w + K̃ ξ
 // All inertia coupling and gyroscopic (quadratic velocity) terms are kept; gravity enters as the
-// uniform acceleration field −g of every mass particle (ẍ − g). K, C, M are the exact derivatives
-// of r (forward AD over the right-trivialized increments, core/autodiff.hpp's Eigen AutoDiffScalar
-// with a dynamic derivative vector: the body has 6 + m unknowns, more than the fixed capacity).
+// uniform acceleration field −g of every mass particle (ẍ − g). r and its exact derivatives K, C, M
+// (right-trivialized increments) are evaluated in closed form (docs/theory/reduced_bodies.md,
+// "Closed-form residual and tangent": O((6 + m)² + m²) per call); the scalar-generic `residual`
+// below, differentiated by forward AD (reduced_body_tangent_by_ad), is the reference the tests
+// compare it with.
 #include <vector>
 
 #include "alphaflex/model/element.hpp"
@@ -34,7 +36,8 @@ struct ReducedBodyMatrices {
   int elastic() const { return static_cast<int>(K.rows()); }
   /// 𝕄(ξ) (6 + m)².
   Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& xi) const;
-  /// Throws std::invalid_argument unless the sizes agree and M0, K are symmetric.
+  /// Throws std::invalid_argument unless the sizes agree, M0 and K are symmetric and M2[i·m+j] = M2[j·m+i]ᵀ
+  /// (to round-off: they are DᵢᵀM̄Dⱼ).
   void check() const;
 };
 
@@ -61,6 +64,13 @@ class ReducedBody final : public Element {
  private:
   ReducedBodyMatrices m_;
   Eigen::Vector3d g_;
+  // The invariants packed for the closed form: C_ stacks the Cᵢ (3m × (6 + m)); S_ (3m × 3m,
+  // symmetric) has the blocks Sᵢⱼ = M₂ᵢⱼ + M₂ⱼᵢ.
+  Eigen::MatrixXd C_, S_;
 };
+
+/// The reference tangent: r, K, C, M of `body` at `s` by forward automatic differentiation of
+/// ReducedBody::residual (the former evaluate(); ~1 ms at m = 14). For tests and benchmarks.
+void reduced_body_tangent_by_ad(const ReducedBody& body, const LocalState& s, LocalResidual& out);
 
 }  // namespace alphaflex

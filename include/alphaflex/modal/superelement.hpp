@@ -6,12 +6,14 @@
 // properties of the block (method `rigid`). Everything here is plain dense data: the reduced-body
 // element (elements module, upstream) receives matrices, never a model.
 //
-// Why dense Eigen and not SLEPc: a reduced block is one link of a mechanism (10²–10⁴ unknowns);
-// the fixed-interface eigenproblem is solved once per run, and the dense generalized symmetric
-// solver (LAPACK-class, Eigen's GeneralizedSelfAdjointEigenSolver) returns every mode with
-// M-orthonormal vectors to round-off, which the exactness test (all modes kept) needs. The SLEPc
-// path of modal_analysis.cpp is for the whole constrained mechanism.
+// Two paths for the fixed-interface problem, one result: small blocks (or many modes asked) by the
+// dense generalized symmetric solver (Eigen's GeneralizedSelfAdjointEigenSolver: every mode,
+// M-orthonormal to round-off, which the exactness test with all modes kept needs; O(n³)); blocks
+// of 10³–10⁴ coordinates by a sparse LDLᵀ factorization of K_ii for the constraint modes and the
+// k lowest modes from SLEPc's Krylov–Schur with shift-and-invert at 0 (MUMPS), followed by a
+// Rayleigh–Ritz step that makes them M-orthonormal to round-off (O(n · bandwidth² + n k²)).
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
@@ -58,6 +60,16 @@ inline int available_modes(int n, int n_boundary) { return n - n_boundary; }
 /// repeats or leaves the range, if `modes` is negative or more than the block has, or if the
 /// interior is not restrained by the interface (K_ii singular: a mechanism inside the block).
 Superelement craig_bampton(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const std::vector<int>& boundary, int modes);
+
+/// Which solver gives the fixed-interface modes: `automatic` takes the dense one for an interior
+/// of at most 300 coordinates or when more than a quarter of the interior's modes are asked
+/// (then the dense solver is the cheaper), the sparse one (LDLᵀ + SLEPc) otherwise.
+enum class ModeSolver { automatic, dense, sparse };
+
+/// craig_bampton on sparse K, M (same result and errors; each mode's sign is fixed by a rule both
+/// paths share — its product with a fixed quasi-random vector is positive — so they can be compared).
+Superelement craig_bampton(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+                           const std::vector<int>& boundary, int modes, ModeSolver solver = ModeSolver::automatic);
 
 /// Rigid-body mass properties of a block: its kinetic energy under rigid motions of all its nodes,
 /// Gᵀ M G with G the 6 rigid modes (translation, rotation about the world origin).
