@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "alphaflex/assembly/diagnostics.hpp"
 #include "alphaflex/core/error.hpp"
@@ -96,7 +97,7 @@ double GeneralizedAlpha::initialize(MechanicalState& s) {
   h_aux_ = 0.0;  // no shift yet: a_0 − q̈_0 = 0 whatever the first h
   factored_h_ = 0.0;  // the solves above factored other matrices
   // Corrected start: a_0 needs the first step's h, which the first step gives.
-  start_pending_ = opt_.start == StartValues::Corrected && p_.alpha_m != p_.alpha_f;
+  start_pending_ = (opt_.start == StartValues::Corrected && p_.alpha_m != p_.alpha_f) || opt_.start == StartValues::Smooth;
   t_start_ = s.t;
   return sub.max_abs(m.difference(q_in, s.q));
 }
@@ -128,6 +129,21 @@ double GeneralizedAlpha::projection_regularisation(const MechanicalState& s) {
   return 1e-12 * sys.subdomain().max_abs(d.dofs);
 }
 
+Eigen::VectorXd GeneralizedAlpha::acceleration_ahead(const MechanicalState& s, double sigma, const Eigen::VectorXd* q3) {
+  MechanicalState ahead = s;
+  ahead.t = s.t + sigma;
+  if (q3) {
+    lin_.model().retract(ahead.q, sigma * s.v + 0.5 * sigma * sigma * s.qdd + (sigma * sigma * sigma / 6.0) * *q3);
+    ahead.v = s.v + sigma * s.qdd + (0.5 * sigma * sigma) * *q3;
+  } else {
+    lin_.model().retract(ahead.q, sigma * s.v + 0.5 * sigma * sigma * s.qdd);
+    ahead.v = s.v + sigma * s.qdd;
+  }
+  consistent_accelerations(ahead);
+  factored_h_ = 0.0;  // the solve factored another matrix
+  return ahead.qdd;
+}
+
 Eigen::VectorXd GeneralizedAlpha::corrected_start(const MechanicalState& s, double h) {
   // Arnold, Brüls & Cardona (2015): a_n approximates q̈(t_n + Δ_α h), Δ_α = α_m − α_f, to O(h²);
   // a_0 = q̈_0 is O(h) off, which the multipliers carry as an O(h)·ρ∞ⁿ transient. The shifted
@@ -135,13 +151,36 @@ Eigen::VectorXd GeneralizedAlpha::corrected_start(const MechanicalState& s, doub
   // consistent accelerations over one step h: q̈(t_0 + h) at the Taylor state
   // q = q_0 ∘ exp(h q̇_0 + ½h² q̈_0), q̇ = q̇_0 + h q̈_0 (off the exact solution by O(h³), O(h²),
   // hence q̈ by O(h²) and q⃛_0 by O(h)), never before t_0 (drivers may start there).
-  MechanicalState ahead = s;
-  ahead.t = s.t + h;
-  lin_.model().retract(ahead.q, h * s.v + 0.5 * h * h * s.qdd);
-  ahead.v = s.v + h * s.qdd;
-  consistent_accelerations(ahead);
-  factored_h_ = 0.0;  // the solve factored another matrix
-  return s.qdd + (p_.alpha_m - p_.alpha_f) * (ahead.qdd - s.qdd);
+  return s.qdd + (p_.alpha_m - p_.alpha_f) * (acceleration_ahead(s, h, nullptr) - s.qdd);
+}
+
+void GeneralizedAlpha::smooth_start(MechanicalState& s, double h) {
+  // The numerical solution is a smooth expansion plus parasitic modes (damped like the roots of σ,
+  // Arnold & Brüls 2007, eq. 37–38). Along a smooth q(t) the scheme's kinematic relations (4)–(5)
+  // and eq. (3) give, with z = hD (docs/theory/starting_values.md §5):
+  //   v = S(z) q̇,  a = R(z) q̈,  q̈_n = W(z) q̈,
+  //   R = 1 + (½ − γ)z + (γ² − γ/2 − β + 1/12)z² + …,  S = 1 + (γ/2 − β − 1/12)z² + (2β − γ)(2γ − 1)/4 z³ + …,
+  //   W = 1 + (α_f − α_m − γ + ½)z + w₂z² + ….
+  // Starting values off this expansion excite the parasitic modes, and the multipliers take the
+  // constraint part of the mismatch with weight O(1) in a_0 and q̈_0 and O(1/h) in q̇_0 (the next
+  // positions must stay on Φ = 0). So a_0, q̈_0 to O(h³) and q̇_0 to O(h⁴) leave an O(h³) transient:
+  // q⃛_0 is needed to O(h²), q⁽⁴⁾_0 to O(h).
+  // First q⃛_0 to O(h) (the corrected start's forward difference), then the accelerations at the
+  // Taylor states h and 2h with that q⃛ (off by O(h³) in q and q̇, so q̈ by O(h³)):
+  // q̈(σ) = q̈_0 + σq⃛_0 + ½σ²q⁽⁴⁾_0 + O(h³) gives q⃛_0 to O(h²) and q⁽⁴⁾_0 to O(h). Never before t_0.
+  const Eigen::VectorXd q3_first = (acceleration_ahead(s, h, nullptr) - s.qdd) / h;
+  const Eigen::VectorXd d1 = acceleration_ahead(s, h, &q3_first) - s.qdd;
+  const Eigen::VectorXd d2 = acceleration_ahead(s, 2.0 * h, &q3_first) - s.qdd;
+  const Eigen::VectorXd q3 = (4.0 * d1 - d2) / (2.0 * h);
+  const Eigen::VectorXd q4 = (d2 - 2.0 * d1) / (h * h);
+  const double am = p_.alpha_m, af = p_.alpha_f, b = p_.beta, g = p_.gamma;
+  const double r1 = 0.5 - g, r2 = g * g - 0.5 * g - b + 1.0 / 12.0;
+  const double s2 = 0.5 * g - b - 1.0 / 12.0, s3 = 0.25 * (2.0 * b - g) * (2.0 * g - 1.0);
+  const double w1 = af - am - g + 0.5,
+               w2 = af * af - af * am - af * g + am * g - b + g * g - 0.5 * g + 1.0 / 12.0;
+  a_ = s.qdd + (r1 * h) * q3 + (r2 * h * h) * q4;
+  s.v += (s2 * h * h) * q3 + (s3 * h * h * h) * q4;
+  s.qdd += (w1 * h) * q3 + (w2 * h * h) * q4;
 }
 
 AssemblyCoefficients GeneralizedAlpha::step_coefficients(double h, const Eigen::VectorXd& increment) const {
@@ -164,7 +203,22 @@ StepReport GeneralizedAlpha::step(MechanicalState& s, double h) { return step(s,
 StepReport GeneralizedAlpha::step(MechanicalState& s, double h, double t_next) {
   // The corrected start: a_0 for this first step's h (again for a retried first step, which the
   // step loop restores with the h of a set to 0).
-  if (start_pending_ && h_aux_ == 0.0 && s.t == t_start_) a_ = corrected_start(s, h);
+  if (start_pending_ && h_aux_ == 0.0 && s.t == t_start_) {
+    if (opt_.start == StartValues::Smooth) {
+      // The smooth start moves q̇_0 and q̈_0 as well: on a copy, so that a failed first step leaves
+      // `s` as it was.
+      MechanicalState first = s;
+      smooth_start(first, h);
+      StepReport rep = advance(first, h, t_next);
+      s = std::move(first);
+      return rep;
+    }
+    a_ = corrected_start(s, h);
+  }
+  return advance(s, h, t_next);
+}
+
+StepReport GeneralizedAlpha::advance(MechanicalState& s, double h, double t_next) {
   if (variable_ && h_aux_ > 0.0 && h != h_aux_) {
     // a_n − q̈_n ≈ (α_m − α_f) h_old q⃛(t_n) (Arnold & Brüls 2007, a_n ≈ q̈(t_n + (α_m − α_f)h)):
     // scaled by h/h_old it is the shift of the new step (docs/theory/adaptive_steps.md).

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -78,8 +79,8 @@ const Schema& solver_schema() {
       {"scaling", KeyType::Flag, "–", "on", "scale the iteration matrix (dynamic rows × βh², unknown βh²Δλ; Bottasso, Dopico & Trainelli 2006)"},
       {"consistent_start", KeyType::Flag, "–", "on", "project the initial positions onto Φ = 0 (in the metric of `start_projection`) and the velocities onto Φ_q q̇ + Φ_t = 0 (correction of least kinetic energy) before the first step"},
       {"start", KeyType::Choice, "–", "`standard`",
-       "starting value of the auxiliary vector a: `standard` a₀ = q̈₀ (Arnold & Brüls 2007); `corrected` a₀ = q̈₀ + (α_m − α_f) h q⃛₀ with q⃛₀ from the accelerations one step ahead (Arnold, Brüls & Cardona 2015), so a₀ matches the shifted time t₀ + (α_m − α_f)h to O(h²). On quick_return the multipliers' start-up transient measured is O(h²)·ρ∞ⁿ with either start, and the corrected start changes it by 0.2–9 % at ρ∞ = 0.5–0.95 (docs/theory/starting_values.md §1)",
-       {}, "", "", {"standard", "corrected"}},
+       "starting value of the auxiliary vector a: `standard` a₀ = q̈₀ (Arnold & Brüls 2007); `corrected` a₀ = q̈₀ + (α_m − α_f) h q⃛₀ with q⃛₀ from the accelerations one step ahead (Arnold, Brüls & Cardona 2015), so a₀ matches the shifted time t₀ + (α_m − α_f)h to O(h²). On quick_return the multipliers' start-up transient measured is O(h²)·ρ∞ⁿ with either start, and the corrected start changes it by 0.2–9 % at ρ∞ = 0.5–0.95 (docs/theory/starting_values.md §1). `smooth`: q̇₀, a₀ and q̈₀ of the first step on the smooth expansion of the numerical solution, q̇₀ + s₂h²q⃛₀ + s₃h³q⁽⁴⁾₀, q̈₀ + (α_m − α_f)h q⃛₀ + r₂h²q⁽⁴⁾₀, q̈₀ + w₂h²q⁽⁴⁾₀, with q⃛₀, q⁽⁴⁾₀ from the accelerations at h and 2h ahead (three more solves): the start-up transient is O(h³) (on quick_return 10–16× smaller at h = 1e-3); what remains early is the scheme's own smooth O(h²) error, which no starting value changes and which on quick_return is still ~11× the later error while the crank accelerates from rest (docs/theory/starting_values.md §5)",
+       {}, "", "", {"standard", "corrected", "smooth"}},
       {"start_projection", KeyType::Choice, "–", "`mass`",
        "metric of the consistent start's position projection onto Φ = 0: `mass` min ½Δqᵀ(M + εI)Δq, ε = 1e-12 max diag M (massless points move, bodies stay where they were placed); `minimum-norm` min ½‖Δq‖² (docs/theory/starting_values.md)",
        {}, "", "", {"mass", "minimum-norm"}},
@@ -273,7 +274,8 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
   if (rs.h_min > rs.h_max) rd.fail(s.node("h_min"), "solver.h_min", "exceeds solver.h_max");
   rs.integrator.scaling = s.flag("scaling", rs.integrator.scaling);
   rs.integrator.consistent_start = s.flag("consistent_start", rs.integrator.consistent_start);
-  rs.integrator.start = s.choice("start", 0) == 1 ? StartValues::Corrected : StartValues::Standard;
+  rs.integrator.start = std::array<StartValues, 3>{StartValues::Standard, StartValues::Corrected,
+                                                   StartValues::Smooth}[s.choice("start", 0)];
   rs.integrator.projection = s.choice("start_projection", 0) == 1 ? StartProjection::MinimumNorm : StartProjection::Mass;
   if (s.has("newton")) {
     const Section n(rd, s.node("newton"), "solver.newton", newton_schema());

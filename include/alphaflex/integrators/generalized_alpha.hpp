@@ -42,6 +42,11 @@ namespace alphaflex {
 enum class StartValues {
   Standard,   ///< a_0 = q̈_0 (Arnold & Brüls 2007, eq. 3)
   Corrected,  ///< a_0 = q̈_0 + Δ_α h q⃛_0, Δ_α = α_m − α_f (Arnold, Brüls & Cardona 2015)
+  /// a_0, q̇_0 and q̈_0 of the first step on the smooth expansion of the numerical solution through
+  /// the exact one: a_0 = q̈_0 + r₁h q⃛_0 + r₂h² q⁽⁴⁾_0, q̇_0 + s₂h² q⃛_0 + s₃h³ q⁽⁴⁾_0,
+  /// q̈_0 + w₂h² q⁽⁴⁾_0 (docs/theory/starting_values.md §5): the multipliers' start-up transient
+  /// falls from O(h²) to O(h³)
+  Smooth,
 };
 
 /// The metric of the position projection of the consistent start (scene key solver.start_projection).
@@ -79,7 +84,8 @@ class GeneralizedAlpha {
   /// Consistent initial conditions (design §3): q0 projected onto Φ = 0 (in the metric of
   /// IntegratorOptions::projection), q̇0 onto Φ_q q̇ = −Φ_t,
   /// then [[M, Φ_qᵀ],[Φ_q, 0]] [q̈0; λ0] = [g; −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt] and a_0 = q̈0
-  /// (StartValues::Corrected: the first step sets a_0 = q̈_0 + Δ_α h q⃛_0 with its own h).
+  /// (StartValues::Corrected: the first step sets a_0 = q̈_0 + Δ_α h q⃛_0 with its own h;
+  /// StartValues::Smooth: the first step also perturbs q̇_0 and q̈_0, on a copy of the state).
   /// Returns the largest change made to q0 by the projection.
   double initialize(MechanicalState& s);
 
@@ -150,6 +156,14 @@ class GeneralizedAlpha {
   void consistent_accelerations(MechanicalState& s);
   /// The corrected a_0 for a first step of size h (StartValues::Corrected).
   Eigen::VectorXd corrected_start(const MechanicalState& s, double h);
+  /// q̈ of the index-1 system at the Taylor state σ after the start, q_0 ∘ exp(σq̇_0 + ½σ²q̈_0 +
+  /// σ³/6 q⃛), q̇_0 + σq̈_0 + ½σ²q⃛, t_0 + σ (q⃛ null: the terms in q⃛ left out).
+  Eigen::VectorXd acceleration_ahead(const MechanicalState& s, double sigma, const Eigen::VectorXd* q3);
+  /// StartValues::Smooth: sets a_ and perturbs s.v, s.qdd for a first step of size h.
+  void smooth_start(MechanicalState& s, double h);
+  /// The step after the start values are set: the auxiliary vector moved to a new h, the step,
+  /// the local error estimate.
+  StepReport advance(MechanicalState& s, double h, double t_next);
   /// W = M + εI of the mass-weighted projection: ε (0 when the model has no mass at all).
   double projection_regularisation(const MechanicalState& s);
 
