@@ -121,7 +121,8 @@ class SceneBuilder {
     const int id = model_.find_node(name);
     if (id < 0 && reduced_points.count(name))
         rd_.fail(n, s.key_path(key), "'" + name + "' is a point inside the reduced beam block '" + reduced_points.at(name) +
-                                         "': only its first interface point has a node; joints, loads and sensors at its other points are not available yet");
+                                         "': only its first interface point has a node, so joints and loads cannot attach there (they need a node tied to the "
+                                         "body); sensors read such points from the rebuilt mesh (point_position, point_displacement)");
     if (id < 0 && mesh_groups.count(name))
       rd_.fail(n, s.key_path(key), "'" + name + "' is a mesh group of " + std::to_string(mesh_groups.at(name).nodes.size()) +
                                        " nodes, not one body: give it as `group` (a joint or load at each of its nodes)");

@@ -19,9 +19,11 @@
 // uniform acceleration field −g of every mass particle (ẍ − g). K, C, M are the exact derivatives
 // of r (forward AD over the right-trivialized increments, core/autodiff.hpp's Eigen AutoDiffScalar
 // with a dynamic derivative vector: the body has 6 + m unknowns, more than the fixed capacity).
+#include <memory>
 #include <vector>
 
 #include "alphaflex/model/element.hpp"
+#include "alphaflex/model/mesh_reconstruction.hpp"
 
 namespace alphaflex {
 
@@ -38,7 +40,7 @@ struct ReducedBodyMatrices {
   void check() const;
 };
 
-class ReducedBody final : public Element {
+class ReducedBody final : public Element, public Reconstructed {
  public:
   /// `frame`: the reference Frame3D node; `coordinates`: the m scalar nodes of ξ (vector spaces
   /// with one unknown); `gravity` in m/s².
@@ -58,9 +60,22 @@ class ReducedBody final : public Element {
                                                const Eigen::Matrix<S, Eigen::Dynamic, 1>& v,
                                                const Eigen::Matrix<S, Eigen::Dynamic, 1>& a, double load_factor) const;
 
+  // ---- The full mesh it stands for (issue 19; reduced_body_output.cpp): the results draw it and
+  // sensors read its points and section forces through output().
+
+  /// Attaches the block's mesh (its points' basis rows must have m columns).
+  void attach_reconstruction(std::shared_ptr<const MeshReconstruction> mesh);
+  const MeshReconstruction* reconstruction() const override { return mesh_.get(); }
+  /// With a mesh: `point_position` and `point_displacement` (3 per point, world, m), then each
+  /// field of the block's elements over all elements (element k's components at k·c …), so that
+  /// output_names() reads `point_position[3a+i]`, `M3[k]`. Without one: none.
+  std::vector<CellField> cell_fields() const override;
+  void output(const LocalState& s, Eigen::VectorXd& values) const override;
+
  private:
   ReducedBodyMatrices m_;
   Eigen::Vector3d g_;
+  std::shared_ptr<const MeshReconstruction> mesh_;
 };
 
 }  // namespace alphaflex
