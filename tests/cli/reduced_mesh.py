@@ -17,13 +17,13 @@ same measure; the rebuilt cells' M2 is the sensor's; /topology/modal_offsets and
 modal_bodies name the body and its 4 coordinates; the modal coordinates equal the amplitude nodes'
 q; and the 2-rank results equal the 1-rank results in every new dataset (to 1e-12 relative)."""
 import argparse
-import csv
 import os
-import subprocess
 import sys
 
 import h5py
 import numpy as np
+
+import reduced_pendulum
 
 NAME = ""
 BOUNDS = {  # sensor: (4 modes, 16 modes) largest error / range; measured 3.6e-4/2.6e-4, 2.9e-3/2.7e-4,
@@ -36,14 +36,9 @@ BOUNDS = {  # sensor: (4 modes, 16 modes) largest error / range; measured 3.6e-4
 
 
 def run(a, name, args, np_=1):
-    launcher = [a.mpirun, "--oversubscribe", "-np", str(np_)] if np_ > 1 else []
-    out = f"{a.out}/{name}"
-    r = subprocess.run(launcher + [a.exe, "run", a.scene, "-o", out] + args, capture_output=True, text=True, timeout=120)
-    if r.returncode != 0:
-        sys.exit(f"{name}: exit {r.returncode}\n{r.stderr}")
-    with open(f"{out}/{NAME}.csv") as f:
-        rows = list(csv.DictReader(f))
-    return out, {k: np.array([float(x[k]) for x in rows]) for k in rows[0]}
+    """The run's output directory and its sensors as arrays (reduced_pendulum.run does the run)."""
+    sensors = reduced_pendulum.run(a, name, args, np_)
+    return f"{a.out}/{name}", {k: np.array(v) for k, v in sensors.items()}
 
 
 def steps(out):

@@ -9,6 +9,7 @@ the swing angle by a factor > 5 (the strip's static sag, 2.6 % of L, is what rig
 the two-rank run must agree with the one-rank run to round-off."""
 import argparse
 import csv
+import os
 import subprocess
 import sys
 
@@ -19,7 +20,7 @@ def run(a, name, args, np=1):
     r = subprocess.run(launcher + [a.exe, "run", a.scene, "-o", out] + args, capture_output=True, text=True, timeout=60)
     if r.returncode != 0:
         sys.exit(f"{name}: exit {r.returncode}\n{r.stderr}")
-    with open(f"{out}/reduced_pendulum.csv") as f:
+    with open(f"{out}/{os.path.splitext(os.path.basename(a.scene))[0]}.csv") as f:
         rows = list(csv.DictReader(f))
     return {k: [float(x[k]) for x in rows] for k in rows[0]}
 
