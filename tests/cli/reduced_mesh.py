@@ -37,7 +37,8 @@ BOUNDS = {  # sensor: (4 modes, 16 modes) largest error / range; measured 3.6e-4
 
 def run(a, name, args, np_=1):
     """The run's output directory and its sensors as arrays (reduced_pendulum.run does the run)."""
-    sensors = reduced_pendulum.run(a, name, args, np_)
+    # 150 s: the 2-rank run took 40-60 s on the loaded 2-core test machine (1-2 s quiet).
+    sensors = reduced_pendulum.run(a, name, args, np_, timeout=150)
     return f"{a.out}/{name}", {k: np.array(v) for k, v in sensors.items()}
 
 

@@ -14,10 +14,10 @@ import subprocess
 import sys
 
 
-def run(a, name, args, np=1):
+def run(a, name, args, np=1, timeout=60):
     launcher = [a.mpirun, "--oversubscribe", "-np", str(np)] if np > 1 else []
     out = f"{a.out}/{name}"
-    r = subprocess.run(launcher + [a.exe, "run", a.scene, "-o", out] + args, capture_output=True, text=True, timeout=60)
+    r = subprocess.run(launcher + [a.exe, "run", a.scene, "-o", out] + args, capture_output=True, text=True, timeout=timeout)
     if r.returncode != 0:
         sys.exit(f"{name}: exit {r.returncode}\n{r.stderr}")
     with open(f"{out}/{os.path.splitext(os.path.basename(a.scene))[0]}.csv") as f:

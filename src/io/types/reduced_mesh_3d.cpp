@@ -45,7 +45,8 @@ bool read_reduced_point_sensor(const Item& it, Sensor& sn) {
   if (!k.has("body")) return false;
   const std::string name = k.text("body");
   const auto rp = it.sb.reduced_points.find(name);
-  if (rp == it.sb.reduced_points.end()) return false;
+  // A point with a node of its own (the frame point, a tied interface point) is read there.
+  if (rp == it.sb.reduced_points.end() || it.model.find_node(name) >= 0) return false;
   const std::string at = it.at("body");
   const int body = reduced_body_of(it.model, rp->second);
   if (body < 0) return false;
