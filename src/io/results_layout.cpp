@@ -38,6 +38,7 @@ NodeLayout node_layout(const Model& global, const std::vector<ElementGrid>& grid
     }
   }
   L.shapes = shape_layout(global);
+  L.reduced = reduced_layout(global);
   return L;
 }
 

@@ -14,6 +14,7 @@
 
 #include "alphaflex/partition/subdomain.hpp"
 #include "results_mesh.hpp"
+#include "results_reduced.hpp"
 #include "results_shapes.hpp"
 
 namespace alphaflex::io_detail {
@@ -26,6 +27,7 @@ struct NodeLayout {
   std::vector<int> node_block;   ///< global node → its flexible block, −1 if none
   std::vector<std::string> blocks;  ///< names of the flexible blocks
   ShapeLayout shapes;               ///< the bodies' shapes (results_shapes.hpp)
+  ReducedLayout reduced;            ///< the reduced bodies' rebuilt meshes (results_reduced.hpp)
   /// Every node is a body (no drawn element): the bodies grid reads the node datasets themselves.
   bool all_bodies() const { return bodies.size() == body_row.size(); }
 };

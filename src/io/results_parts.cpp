@@ -53,11 +53,14 @@ ResultsParts::ResultsParts(const Subdomain& sub, const std::vector<ElementGrid>&
     if (r >= 0) link_.add(3 * static_cast<unsigned long long>(r), 3);
   }
   shapes_.emplace(sub, layout_.shapes);
+  reduced_.emplace(sub, layout_.reduced);
   // A first estimate of an output step's bytes: its values, and ~1 KiB of HDF5 metadata per
   // dataset (object header, the group's index); measured after each step.
   unsigned long long values = node_.total * 26 + joint_.total * 9 + state_.conf.total + 2 * state_.dof.total + state_.mult.total +
-                         9 * layout_.shapes.points();  // shape points, displacement, velocity
+                         9 * layout_.shapes.points() +  // shape points, displacement, velocity
+                         19 * layout_.reduced.points() + 2 * layout_.reduced.modes();  // rebuilt meshes, modal coordinates
   size_t sets = 20;
+  for (const CellField& f : layout_.reduced.fields) values += layout_.reduced.cells() * static_cast<unsigned long long>(f.components);
   for (size_t k = 0; k < grids.size(); ++k)
     for (const CellField& f : grids[k].fields) {
       values += cells_[k].total * static_cast<unsigned long long>(f.components);
@@ -111,6 +114,7 @@ void ResultsParts::write_topology(H5Calls& h5, hid_t file) const {
     write_int_rows(h5, topo, "links", link_, ids.data(), transfer_);
   }
   shapes_->write_topology(h5, topo, transfer_);
+  reduced_->write_topology(h5, topo, transfer_);
   for (size_t k = 0; k < grids_.size(); ++k) {
     if (grids_[k].elements.empty()) continue;
     ids.clear();
@@ -285,6 +289,7 @@ void ResultsParts::write_step(const MechanicalState& s, const std::string& group
   }
   if (!layout_.links.empty()) put("link_points", link_, 3, links.data());
   shapes_->write_step(h5, g, s, transfer_);
+  reduced_->write_step(h5, g, s, transfer_);
   // Element results (a beam's section forces and strains, a shell's resultants and stresses),
   // constant on an element: cell data, one dataset per field.
   for (size_t k = 0; k < grids_.size(); ++k) {

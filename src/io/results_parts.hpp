@@ -73,6 +73,7 @@ class ResultsParts {
   NodeLayout layout_;
   Rows body_, link_;  ///< owned body nodes (when not every node is a body); 3 points per drawn link
   std::optional<ShapeRows> shapes_;  ///< the shapes of the owned bodies (made with layout_)
+  std::optional<ReducedRows> reduced_;  ///< the rebuilt meshes of the owned reduced bodies (made with layout_)
   StateRows state_;
   std::vector<Rows> cells_, connectivity_;
   std::vector<std::vector<int>> local_elements_;  ///< per grid: local element indices, in row order

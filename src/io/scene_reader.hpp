@@ -121,7 +121,8 @@ class SceneBuilder {
     const int id = model_.find_node(name);
     if (id < 0 && reduced_points.count(name))
         rd_.fail(n, s.key_path(key), "'" + name + "' is a point inside the reduced beam block '" + reduced_points.at(name) +
-                                         "': only its interface points have nodes; add it to the block's `reduction.interface` to attach joints, loads or sensors there");
+                                         "': only its interface points have nodes, so joints and loads attach there only (add the point to the block's `reduction.interface`); "
+                                         "sensors read other points from the rebuilt mesh (point_position, point_displacement)");
     if (id < 0 && mesh_groups.count(name))
       rd_.fail(n, s.key_path(key), "'" + name + "' is a mesh group of " + std::to_string(mesh_groups.at(name).nodes.size()) +
                                        " nodes, not one body: give it as `group` (a joint or load at each of its nodes)");

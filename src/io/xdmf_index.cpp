@@ -116,6 +116,52 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
     }
     x << "  </Grid>\n";
   }
+  if (!layout_.reduced.empty()) {
+    // The reduced bodies' meshes rebuilt from their frames and modes (results_reduced.hpp), drawn
+    // like a beam block: points, node data, the elements' results as cell data; each body's modal
+    // coordinates as grid data (ParaView: field data `modal_coordinates_NAME`), a hyperslab of the
+    // step's modal_coordinates (start, stride, count of the 1-D dataset of Σm values).
+    const ReducedLayout& r = layout_.reduced;
+    const std::string name = r.grid();
+    x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t s = 0; s < steps.size(); ++s) {
+      x << "   <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n    <Time Value=\"" << steps[s].time << "\"/>\n";
+      if (r.lines)
+        x << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << r.cells() << "\" NodesPerElement=\"2\">\n"
+          << "      <DataItem Dimensions=\"" << r.cells() << " 2\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">";
+      else
+        x << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << r.cells() << "\">\n"
+          << "      <DataItem Dimensions=\"" << r.connectivity_size() << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">";
+      x << in_part(s) << ":/topology/reduced_" << r.structure << "_connectivity</DataItem>\n    </Topology>\n"
+        << "    <Geometry GeometryType=\"XYZ\">\n";
+      item(s, r.dataset("points"), r.points(), 3);
+      x << "    </Geometry>\n";
+      for (const char* v : {"displacement", "velocity", "axis2", "axis3"}) {
+        x << "    <Attribute Name=\"" << v << "\" AttributeType=\"Vector\" Center=\"Node\">\n";
+        item(s, r.dataset(v), r.points(), 3);
+        x << "    </Attribute>\n";
+      }
+      x << "    <Attribute Name=\"quaternion\" AttributeType=\"Matrix\" Center=\"Node\">\n";
+      item(s, r.dataset("quaternion"), r.points(), 4);
+      x << "    </Attribute>\n";
+      for (const CellField& f : r.fields) {
+        x << "    <Attribute Name=\"" << f.name << "\" AttributeType=\"" << attribute_type(f.components) << "\" Center=\"Cell\">\n";
+        item(s, r.dataset(f.name), r.cells(), f.components);
+        x << "    </Attribute>\n";
+      }
+      for (size_t b = 0; b < r.elements.size(); ++b) {
+        const unsigned long long first = r.modal_offset[b], m = r.modal_offset[b + 1] - first;
+        if (m == 0) continue;
+        x << "    <Attribute Name=\"modal_coordinates_" << r.names[b] << "\" AttributeType=\"Scalar\" Center=\"Grid\">\n"
+          << "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << m << "\" Type=\"HyperSlab\">\n"
+          << "      <DataItem Dimensions=\"3 1\" Format=\"XML\">" << first << " 1 " << m << "</DataItem>\n"
+          << "      <DataItem Dimensions=\"" << r.modes() << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << in_part(s)
+          << ":/" << steps[s].group << "/modal_coordinates</DataItem>\n     </DataItem>\n    </Attribute>\n";
+      }
+      x << "   </Grid>\n";
+    }
+    x << "  </Grid>\n";
+  }
   // An element grid per output step: its topology, the nodes' positions and motion as point data,
   // the elements' results as cell data. Line segments (beams) carry the node axes 2 and 3 (the
   // section axes), faces (shells) the accelerations.

@@ -12,6 +12,7 @@
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/petsc_error.hpp"
 #include "alphaflex/core/rotation.hpp"
+#include "alphaflex/model/mesh_reconstruction.hpp"
 #include "alphaflex/model/model.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
 
@@ -306,9 +307,7 @@ namespace alphaflex {
 
 void ReducedBlock::node_pose(size_t a, const Eigen::Vector3d& xf, const Eigen::Matrix3d& Rf, const Eigen::VectorXd& xi,
                              Eigen::Vector3d& x, Eigen::Matrix3d& R) const {
-  const Eigen::VectorXd d = shapes[a] * xi;
-  x = xf + Rf * (positions[a] + d.head<3>());
-  R = Rf * rotations[a] * exp_so3(Eigen::Vector3d(d.tail<3>()));
+  reduced_point_pose(positions[a], rotations[a], shapes[a], xf, Rf, xi, x, R);
 }
 
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,

@@ -10,6 +10,7 @@ the two-rank run must agree with the one-rank run to round-off."""
 import argparse
 import csv
 import glob
+import os
 import subprocess
 import sys
 

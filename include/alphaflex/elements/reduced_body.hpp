@@ -21,9 +21,11 @@
 // "Closed-form residual and tangent": O((6 + m)² + m²) per call); the scalar-generic `residual`
 // below, differentiated by forward AD (reduced_body_tangent_by_ad), is the reference the tests
 // compare it with.
+#include <memory>
 #include <vector>
 
 #include "alphaflex/model/element.hpp"
+#include "alphaflex/model/mesh_reconstruction.hpp"
 
 namespace alphaflex {
 
@@ -41,7 +43,7 @@ struct ReducedBodyMatrices {
   void check() const;
 };
 
-class ReducedBody final : public Element {
+class ReducedBody final : public Element, public Reconstructed {
  public:
   /// `frame`: the reference Frame3D node; `coordinates`: the m scalar nodes of ξ (vector spaces
   /// with one unknown); `gravity` in m/s².
@@ -61,12 +63,25 @@ class ReducedBody final : public Element {
                                                const Eigen::Matrix<S, Eigen::Dynamic, 1>& v,
                                                const Eigen::Matrix<S, Eigen::Dynamic, 1>& a, double load_factor) const;
 
+  // ---- The full mesh it stands for (issue 19; reduced_body_output.cpp): the results draw it and
+  // sensors read its points and section forces through output().
+
+  /// Attaches the block's mesh (its points' basis rows must have m columns).
+  void attach_reconstruction(std::shared_ptr<const MeshReconstruction> mesh);
+  const MeshReconstruction* reconstruction() const override { return mesh_.get(); }
+  /// With a mesh: `point_position` and `point_displacement` (3 per point, world, m), then each
+  /// field of the block's elements over all elements (element k's components at k·c …), so that
+  /// output_names() reads `point_position[3a+i]`, `M3[k]`. Without one: none.
+  std::vector<CellField> cell_fields() const override;
+  void output(const LocalState& s, Eigen::VectorXd& values) const override;
+
  private:
   ReducedBodyMatrices m_;
   Eigen::Vector3d g_;
   // The invariants packed for the closed form: C_ stacks the Cᵢ (3m × (6 + m)); S_ (3m × 3m,
   // symmetric) has the blocks Sᵢⱼ = M₂ᵢⱼ + M₂ⱼᵢ.
   Eigen::MatrixXd C_, S_;
+  std::shared_ptr<const MeshReconstruction> mesh_;
 };
 
 /// The reference tangent: r, K, C, M of `body` at `s` by forward automatic differentiation of

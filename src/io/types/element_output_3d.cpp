@@ -1,6 +1,7 @@
 // `beam_output` and `shell_output` (spatial): a result field of one element of a beam or shell
 // block (elements NAME[k], in mesh order).
 #include "common.hpp"
+#include "reduced_mesh_3d.hpp"
 
 namespace alphaflex::scene_detail {
 namespace {
@@ -11,6 +12,7 @@ void read_element_output(const Item& it, Sensor& sn, bool beam) {
   sn.kind = Sensor::Kind::ElementOutput;
   const std::string bn = it.keys.text(block);
   const int idx = it.keys.integer("element");
+  if (beam && read_reduced_element_output(it, sn, bn, idx)) return;  // recovered from the modes
   const std::string ename = bn + "[" + std::to_string(idx) + "]";
   const auto& elements = it.model.elements();
   for (size_t e = 0; e < elements.size(); ++e)

@@ -2,6 +2,7 @@
 // component of a body point's motion (m, m, m/s, m/s²), world frame or the frame of
 // `relative_to`; one schema, four quantities.
 #include "common.hpp"
+#include "reduced_mesh_3d.hpp"
 
 namespace alphaflex::scene_detail {
 namespace {
@@ -10,6 +11,7 @@ void read_point_sensor_3d(const Item& it, Sensor& sn, Sensor::Kind kind) {
   Reader& rd = it.rd;
   const Section& k = it.keys;
   sn.kind = kind;
+  if (read_reduced_point_sensor(it, sn)) return;  // a point inside a reduced block: rebuilt from the modes
   if (k.has("marker")) {
     if (k.has("body") || k.has("point")) rd.fail(k.node("marker"), it.at("marker"), "give either marker or body/point");
     const std::string mn = k.text("marker");

@@ -14,6 +14,7 @@
 #include "alphaflex/joints/reduced_interface_tie.hpp"
 #include "alphaflex/modal/superelement.hpp"
 #include "reduced_beams_3d.hpp"
+#include "reduced_mesh_3d.hpp"
 
 namespace alphaflex::scene_detail {
 
@@ -103,7 +104,9 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
     if (it.model.find_node(c.name) >= 0) it.rd.fail(it.node, it.path, "node '" + c.name + "' exists already");
     amplitudes.push_back(it.model.add_node(c));
   }
-  it.model.add_element(std::make_unique<ReducedBody>(it.name, frame, amplitudes, rb.matrices, it.sb.gravity));
+  auto body = std::make_unique<ReducedBody>(it.name, frame, amplitudes, rb.matrices, it.sb.gravity);
+  body->attach_reconstruction(reduced_block_mesh(it, scratch, elements, rb, in_block));  // the full mesh for output and sensors
+  it.model.add_element(std::move(body));
   // Each other interface point: its node held at node_pose by 6 equations (docs/theory/reduced_bodies.md).
   for (size_t i = 1; i < mesh_interface.size(); ++i) {
     const int m = mesh_interface[i];

@@ -1,0 +1,58 @@
+#pragma once
+// Private to the io module: the reduced bodies' rebuilt meshes and their modal coordinates in the
+// results (issue 19; model/mesh_reconstruction.hpp; docs/output.md, "Reduced bodies").
+//  - grid `reduced_<structure>s` (reduced_beams): every reduced body's mesh, its points rows
+//    point_offset[b] … of `reduced_<structure>_points` (also _displacement, _velocity,
+//    _quaternion, _axis2, _axis3), its cells rows cell_offset[b] … of the cell fields
+//    `reduced_<structure>_<field>` (the block's elements' own results: a beam's section forces
+//    and strains), its connectivity entries connectivity_offset[b] … of
+//    /topology/reduced_<structure>_connectivity (point rows);
+//  - `modal_coordinates` and `modal_velocities`: ξ and ξ̇ of every reduced body, rows
+//    modal_offset[b] … (dataset /topology/modal_offsets; the bodies' names in the attribute
+//    `modal_bodies` of /topology, one per line, in model order).
+// The rank that owns a reduced body's element writes all its rows, so the files are the same on
+// any number of ranks.
+#include <string>
+#include <vector>
+
+#include "alphaflex/partition/subdomain.hpp"
+#include "hdf5_rows.hpp"
+
+namespace alphaflex::io_detail {
+
+struct ReducedLayout {
+  std::vector<int> elements;      ///< global ids of the elements with a rebuilt mesh, increasing
+  std::vector<std::string> names; ///< their names
+  /// Per body b its first row; entry `elements.size()` is the total (empty: no reduced body).
+  std::vector<unsigned long long> point_offset, cell_offset, connectivity_offset, modal_offset;
+  std::string structure;          ///< the first body's elements' ("beam")
+  std::vector<CellField> fields;  ///< the first body's elements' (bodies with other fields write zeros)
+  bool lines = true;              ///< only line cells: an XDMF Polyline topology of 2 point rows per cell
+  bool empty() const { return elements.empty(); }
+  unsigned long long points() const { return empty() ? 0 : point_offset.back(); }
+  unsigned long long cells() const { return empty() ? 0 : cell_offset.back(); }
+  unsigned long long connectivity_size() const { return empty() ? 0 : connectivity_offset.back(); }
+  unsigned long long modes() const { return empty() ? 0 : modal_offset.back(); }
+  std::string grid() const { return "reduced_" + structure + "s"; }
+  std::string dataset(const std::string& what) const { return "reduced_" + structure + "_" + what; }
+};
+
+ReducedLayout reduced_layout(const Model& global);
+
+/// This rank's rows: the reduced bodies whose element it owns.
+class ReducedRows {
+ public:
+  ReducedRows(const Subdomain& sub, const ReducedLayout& layout);
+  /// The connectivity and modal offsets (collective; nothing without reduced bodies).
+  void write_topology(H5Calls& h5, hid_t topo, hid_t xfer) const;
+  /// The rebuilt meshes and modal coordinates at the local state s (collective).
+  void write_step(H5Calls& h5, hid_t group, const MechanicalState& s, hid_t xfer) const;
+
+ private:
+  const Subdomain& sub_;
+  const ReducedLayout& layout_;
+  std::vector<std::pair<int, int>> mine_;  ///< (body row b, local element), increasing
+  Rows points_, cells_, connectivity_, modal_;
+};
+
+}  // namespace alphaflex::io_detail
