@@ -7,7 +7,8 @@ damping η = 0.01 s) to t = 0.2 s (the blow and the overdamped decay of what it 
 modes). Reference: the same scene with fixed h = 1e-5 s, a step that lands on the blow's three
 breakpoints (0.10037, 0.10052, 0.10067 s) and converges there with order 2. One adaptive run
 (tol = 1e-5) must reach an error in tip_y at t_end no larger than that of the fixed step h = 1e-4 s
-(a step that does not land on the blow) with fewer steps. Steps, not time: no timing in tests.
+(a step that does not land on the blow) with fewer steps (measured: adaptive 339 steps, 6.8e-6 m; fixed 2000 steps, 2.6e-3 m). Steps, not
+time: no timing in tests.
 
 usage: adaptive_hammer.py ALPHAFLEX INPUTS_DIR OUTDIR
 """
