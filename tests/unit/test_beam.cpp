@@ -775,16 +775,14 @@ TEST(BeamDamping, TangentsMatchCentralDifferencesOnTheGroup) {
       const Eigen::Matrix<double, 6, 12> B = sp.beam.strain_rate_operator(s.q);
       const double eB = relative_error(Bfd, B);
       EXPECT_LT(eB, 1e-7);
-      // Dissipated power: vᵀ(r(q, v) − r(q, 0)) at q̈ = 0 and no gravity (load factor 0) is
-      // vᵀ(gyroscopic) + L0 η ε̇ᵀ C ε̇, and the gyroscopic power is zero (Ω̄ · Ω̄ × J̄Ω̄ = 0).
-      LocalState moving = s, still = s;
+      // Dissipated power: vᵀ(r_damped − r_elastic) at the same state (the undamped twin removes the
+      // elastic, inertial and gyroscopic parts) is L0 η ε̇ᵀ C ε̇.
+      LocalState moving = s;
       moving.qdd.setZero();
       moving.load_factor = 0.0;
-      still = moving;
-      still.v.setZero();
       const Vector6d rate = B * s.v;
-      const double power = s.v.dot(element_residual(sp.beam, moving) - element_residual(sp.beam, still));
-      const double expected = L * eta * rate.dot(unit_section().stiffness().cwiseProduct(rate));
+      const double power = s.v.dot(element_residual(sp.beam, moving) - element_residual(elastic.beam, moving));
+      const double expected = sp.beam.reference_length() * eta * rate.dot(unit_section().stiffness().cwiseProduct(rate));
       EXPECT_GT(expected, 0.0);
       EXPECT_NEAR(power, expected, 1e-10 * expected);
       const LocalResidual te = element_tangents(elastic.beam, s);
@@ -842,7 +840,7 @@ TEST(BeamDamping, FirstBendingModeHasTheDampingRatioEtaOmegaOverTwo) {
   const double zeta = phi.dot(c.C * phi) / (2.0 * omega * phi.dot(c.M * phi));
   std::printf("damped cantilever: omega1 %.8f rad/s (Euler-Bernoulli %.8f), eta %.6e s, zeta1 %.8f (eta omega/2 = %.8f, "
               "analytic %.8f)\n", omega, omega_eb, eta, zeta, 0.5 * eta * omega, zeta_target);
-  EXPECT_NEAR(zeta, 0.5 * eta * omega, 1e-10 * zeta);
+  EXPECT_NEAR(zeta, 0.5 * eta * omega, 1e-8 * zeta);  // round-off of the 96-unknown eigenvectors
   EXPECT_NEAR(zeta, zeta_target, 1e-3 * zeta_target);
 }
 
