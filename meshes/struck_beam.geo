@@ -1,7 +1,7 @@
 // struck_beam.geo — straight beam (0,0,0) → (L,0,0) in n segments of one 2-node element each, every
 // node a named physical point, so that a scene can put a force element between any two adjacent
-// nodes (inputs/beam_impulse_damped.yaml: a rotational dashpot per element, the beam's material
-// damping of bending).
+// nodes (issue 17's damped struck beams once had a rotational dashpot per element; they now use the
+// beams' own material damping, inputs/beam_impulse_damped.yaml).
 // Units: m.
 // Physical groups: line "beam"; points "p0" (origin) … "pn" (x = L).
 // Parameters (ONELAB, set from a scene's mesh.parameters or `gmsh -setnumber NAME VALUE`):

@@ -342,7 +342,8 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
 
   const double h = rs.h;
   // The step policy (driver/step_controller.hpp): fixed, cut-back on Newton failures, or adaptive.
-  const AdaptiveOptions adaptive{rs.tolerance_rtol, rs.tolerance_atol, rs.h_min, rs.h_max, rs.output_dt, rs.breakpoints};
+  const AdaptiveOptions adaptive{rs.tolerance_rtol, rs.tolerance_atol, rs.h_min, rs.h_max, rs.output_dt, rs.breakpoints,
+                                 rs.tolerance_hold};
   const std::unique_ptr<StepController> controller = make_step_controller(h, rs.t_end, rs.step_cuts, adaptive);
   const std::string checkpoint_path = (std::filesystem::absolute(opt.outdir) / (scene.name + ".checkpoint.h5")).string();
   Checkpointer checkpointer(sub, writer.get(), checkpoint_path, rs.parameters, h, rs.checkpoint_keep);

@@ -172,6 +172,9 @@ bool Adaptive::accept(const StepPlan& p, double error) {
   // A step shortened to land somewhere says little about the h the solution allows: keep the h
   // planned before it unless the error asks for less.
   if (p.resized) h = std::max(h, std::min(st_.h, p.h * f));
+  // Hysteresis (AdaptiveOptions::hold): a growth by less than `hold` is not worth a new S_t; the
+  // step is then smaller than the error allows, never larger.
+  else if (o_.hold > 1.0 && h >= p.h && h < o_.hold * p.h) h = p.h;
   st_.h = std::clamp(h, o_.h_min, o_.h_max);
   st_.error_prev = e;
   st_.cuts_in_row = 0;

@@ -47,6 +47,18 @@ struct ElasticResidual {
   }
 };
 
+/// The elastic and damping residual at the nodes' velocities v (constants of the kernel): its
+/// kernel_jacobian is (r, K at fixed v).
+struct ViscoelasticResidual {
+  const GeometricallyExactBeam& beam;
+  const double* v;
+
+  template <class S>
+  void operator()(const Pose<S>* frames, const S& /*t*/, KernelVector<S>& out) const {
+    out = beam.section_residual_of<S>(frames[0], frames[1], v);
+  }
+};
+
 /// m_ij = ∫ N_i N_j ds / L0 for linear shape functions.
 constexpr double kMass[2][2] = {{1.0 / 3.0, 1.0 / 6.0}, {1.0 / 6.0, 1.0 / 3.0}};
 
@@ -55,9 +67,14 @@ constexpr double kMass[2][2] = {{1.0 / 3.0, 1.0 / 6.0}, {1.0 / 6.0, 1.0 / 3.0}};
 GeometricallyExactBeam::GeometricallyExactBeam(std::string name, int node_a, int node_b, const BeamSection& section,
                                                const Pose<double>& pose_a, const Pose<double>& pose_b,
                                                const Eigen::Matrix3d& section_a, const Eigen::Matrix3d& section_b,
-                                               const Eigen::Vector3d& gravity)
-    : Element(std::move(name), {node_a, node_b}), section_(section), g_(gravity) {
+                                               const Eigen::Vector3d& gravity, double damping)
+    : Element(std::move(name), {node_a, node_b}), section_(section), eta_(damping), g_(gravity) {
   if (node_a == node_b) throw std::invalid_argument("a beam element needs two different nodes");
+  if (!(std::isfinite(damping) && damping >= 0.0)) {
+    std::ostringstream m;
+    m << "the material damping eta must be zero or positive and finite, in s (got " << damping << ")";
+    throw std::invalid_argument(m.str());
+  }
   require_rotation(pose_a.R, "the rotation of node A");
   require_rotation(pose_b.R, "the rotation of node B");
   require_rotation(section_a, "the section frame at end A");
@@ -91,7 +108,8 @@ Vec6<S> GeometricallyExactBeam::strain_of(const Pose<S>& a, const Pose<S>& b) co
 }
 
 template <class S>
-Eigen::Matrix<S, 12, 1> GeometricallyExactBeam::elastic_residual_of(const Pose<S>& a, const Pose<S>& b) const {
+Eigen::Matrix<S, 12, 1> GeometricallyExactBeam::section_residual_of(const Pose<S>& a, const Pose<S>& b,
+                                                                    const double* v) const {
   // Section frames, relative motion H_AB = H_A⁻¹ H_B = (R_rel, p) and d = log H_AB (as strain_of).
   const Mat3<S> RsA = a.R * offset_[0];
   const Mat3<S> RsB = b.R * offset_[1];
@@ -102,6 +120,21 @@ Eigen::Matrix<S, 12, 1> GeometricallyExactBeam::elastic_residual_of(const Pose<S
   const Vector6d& c = section_.stiffness();
   Vec6<S> f;
   for (int k = 0; k < 6; ++k) f[k] = c[k] * (d[k] / L0_ - eps0_[k]);
+  if (v) {
+    // Kelvin–Voigt: f += η C ε̇, ε̇ = T_SE(3)(d)⁻¹ w / L0 with w = ξ̇_B − Ad(H_AB⁻¹) ξ̇_A,
+    // ξ̇_i = ((R_i O_i)ᵀ ẋ_i, O_iᵀ Ω_i) (header comment):
+    // w = (R_sBᵀ (ẋ_B − ẋ_A) + R_relᵀ (p × O_Aᵀ Ω_A),  O_Bᵀ Ω_B − R_relᵀ O_Aᵀ Ω_A).
+    const Eigen::Map<const Eigen::Matrix<double, 12, 1>> vel(v);
+    const Vec3<S> dxdt = (vel.segment<3>(6) - vel.segment<3>(0)).template cast<S>();
+    const Vec3<S> phiA = (offset_[0].transpose() * vel.segment<3>(3)).template cast<S>();
+    const Vec3<S> phiB = (offset_[1].transpose() * vel.segment<3>(9)).template cast<S>();
+    Vec6<S> w;
+    w.template head<3>() = RsB.transpose() * dxdt + Rrel.transpose() * p.cross(phiA);
+    w.template tail<3>() = phiB - Rrel.transpose() * phiA;
+    const Vec6<S> rate = tangent_se3_inverse<S>(d) * w;
+    const double eta = eta_;
+    for (int k = 0; k < 6; ++k) f[k] += S(eta * c[k] / L0_) * rate[k];
+  }
   const Vec6<S> g = tangent_se3_inverse_transpose_times<S>(d, f);
   const Vec3<S> gU = g.template head<3>(), gth = g.template tail<3>();
   const Vec3<S> RgU = Rrel * gU;
@@ -119,10 +152,27 @@ template Vec6<ad::FixedAD1<12>> GeometricallyExactBeam::strain_of<ad::FixedAD1<1
                                                                                     const Pose<ad::FixedAD1<12>>&) const;
 template Vec6<ad::FixedAD2<12>> GeometricallyExactBeam::strain_of<ad::FixedAD2<12>>(const Pose<ad::FixedAD2<12>>&,
                                                                                     const Pose<ad::FixedAD2<12>>&) const;
-template Eigen::Matrix<double, 12, 1> GeometricallyExactBeam::elastic_residual_of<double>(const Pose<double>&,
-                                                                                        const Pose<double>&) const;
-template Eigen::Matrix<ad::FixedAD1<12>, 12, 1> GeometricallyExactBeam::elastic_residual_of<ad::FixedAD1<12>>(
-    const Pose<ad::FixedAD1<12>>&, const Pose<ad::FixedAD1<12>>&) const;
+template Eigen::Matrix<double, 12, 1> GeometricallyExactBeam::section_residual_of<double>(const Pose<double>&,
+                                                                                        const Pose<double>&,
+                                                                                        const double*) const;
+template Eigen::Matrix<ad::FixedAD1<12>, 12, 1> GeometricallyExactBeam::section_residual_of<ad::FixedAD1<12>>(
+    const Pose<ad::FixedAD1<12>>&, const Pose<ad::FixedAD1<12>>&, const double*) const;
+
+Eigen::Matrix<double, 6, 12> GeometricallyExactBeam::strain_rate_operator(const Eigen::VectorXd& q) const {
+  // B_ε = T_SE(3)(d)⁻¹ G / L0 with G v = w (section_residual_of):
+  // G = [[−R_sBᵀ, R_relᵀ p̂ O_Aᵀ, R_sBᵀ, 0], [0, −R_relᵀ O_Aᵀ, 0, O_Bᵀ]].
+  const Pose<double> a = pose_of(q.data()), b = pose_of(q.data() + 7);
+  const Eigen::Matrix3d RsA = a.R * offset_[0], RsB = b.R * offset_[1];
+  const Eigen::Matrix3d Rrel = RsA.transpose() * RsB;
+  const Eigen::Vector3d p = RsA.transpose() * (b.x - a.x);
+  Eigen::Matrix<double, 6, 12> G = Eigen::Matrix<double, 6, 12>::Zero();
+  G.block<3, 3>(0, 0) = -RsB.transpose();
+  G.block<3, 3>(0, 3) = Rrel.transpose() * hat<double>(p) * offset_[0].transpose();
+  G.block<3, 3>(0, 6) = RsB.transpose();
+  G.block<3, 3>(3, 3) = -Rrel.transpose() * offset_[0].transpose();
+  G.block<3, 3>(3, 9) = offset_[1].transpose();
+  return tangent_se3_inverse<double>(se3_log<double>(Rrel, p)) * G / L0_;
+}
 
 GeometricallyExactBeam::Vector6d GeometricallyExactBeam::strain(const Eigen::VectorXd& q) const {
   return strain_of<double>(pose_of(q.data()), pose_of(q.data() + 7));
@@ -152,7 +202,21 @@ void GeometricallyExactBeam::elastic_forces_from_energy(const Eigen::VectorXd& q
 }
 
 void GeometricallyExactBeam::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
-  if (tangent) {
+  if (eta_ > 0.0) {
+    // Kelvin–Voigt: K at fixed v by AD of the same kernel, C_t = η L0 B_εᵀ C B_ε (header comment).
+    if (tangent) {
+      KernelValue r;
+      KernelJacobian K;
+      kernel_jacobian(ViscoelasticResidual{*this, s.v.data()}, s.q, s.t, r, K);
+      out.r += r;
+      out.K += K;
+      const Eigen::Matrix<double, 6, 12> B = strain_rate_operator(s.q);
+      out.C.topLeftCorner<12, 12>().noalias() +=
+          (eta_ * L0_) * B.transpose() * section_.stiffness().asDiagonal() * B;
+    } else {
+      out.r += section_residual_of<double>(pose_of(s.q.data()), pose_of(s.q.data() + 7), s.v.data());
+    }
+  } else if (tangent) {
     KernelValue r;  // fixed capacity: no heap allocation per element
     KernelJacobian K;
     kernel_jacobian(ElasticResidual{*this}, s.q, s.t, r, K);
@@ -219,6 +283,9 @@ void GeometricallyExactBeam::output(const LocalState& s, Eigen::VectorXd& values
   const Vector6d e = strain(s.q);
   values.resize(12);
   values.head<6>() = section_.stiffness().cwiseProduct(e);
+  // With material damping the section forces are the whole C (ε + η ε̇).
+  if (eta_ > 0.0)
+    values.head<6>() += eta_ * section_.stiffness().cwiseProduct(strain_rate_operator(s.q) * s.v);
   values.tail<6>() = e;
 }
 

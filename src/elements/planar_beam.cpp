@@ -1,6 +1,7 @@
 #include "alphaflex/elements/planar_beam.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -65,9 +66,16 @@ void PlanarBeam::lengthening(double a, double& g, double& dg, double& ddg) {
 
 PlanarBeam::PlanarBeam(std::string name, int node_a, int node_b, double EA, double GA, double EI, double rhoA,
                        double rhoI, const Eigen::Vector3d& state_a, const Eigen::Vector3d& state_b,
-                       double section_angle_a, double section_angle_b, const Eigen::Vector2d& gravity)
-    : Element(std::move(name), {node_a, node_b}), c_(EA, GA, EI), rhoA_(rhoA), rhoI_(rhoI), g_(gravity) {
+                       double section_angle_a, double section_angle_b, const Eigen::Vector2d& gravity,
+                       double damping)
+    : Element(std::move(name), {node_a, node_b}), c_(EA, GA, EI), rhoA_(rhoA), rhoI_(rhoI), eta_(damping), g_(gravity) {
   const std::string& n = this->name();
+  if (!(std::isfinite(damping) && damping >= 0.0)) {
+    std::ostringstream m;
+    m << "planar beam '" << n << "': the material damping eta must be zero or positive and finite, in s (got " << damping
+      << ")";
+    throw std::invalid_argument(m.str());
+  }
   require_positive(EA, n, "the axial stiffness EA");
   require_positive(GA, n, "the shear stiffness GA");
   require_positive(EI, n, "the bending stiffness EI");
@@ -120,13 +128,19 @@ void PlanarBeam::evaluate(const LocalState& st, LocalResidual& out, bool tangent
   // P = R(ᾱ)ᵀ Δx (chord in the mean section frame), d = (g P, Δθ).
   const double P1 = c * dx + s * dy, P2 = c * dy - s * dx;
   const Eigen::Vector3d eps(g * P1 / L0_ - eps0_[0], g * P2 / L0_ - eps0_[1], dth / L0_ - eps0_[2]);
-  const Eigen::Vector3d f = c_.cwiseProduct(eps);  // (N, V, M)
+  Eigen::Vector3d f = c_.cwiseProduct(eps);  // (N, V, M)
 
   // Bz = ∂d/∂z (rows d1, d2, d3; columns Δx, Δy, ᾱ, Δθ); ∂P/∂ᾱ = (P2, −P1).
   Eigen::Matrix<double, 3, 4> Bz;
   Bz << g * c, g * s, g * P2, dg * P1,  //
       -g * s, g * c, -g * P1, dg * P2,  //
       0.0, 0.0, 0.0, 1.0;
+  // Material damping: f += η C ε̇, ε̇ = Bz ż / L0 with ż = T q̇ (header comment).
+  Eigen::Vector4d zdot = Eigen::Vector4d::Zero();
+  if (eta_ > 0.0) {
+    zdot = kT * st.v.head<6>();
+    f += (eta_ / L0_) * c_.cwiseProduct(Bz * zdot);
+  }
   const Eigen::Vector4d rz = Bz.transpose() * f;
   double* r = out.r.data();
   r[0] -= rz[0];
@@ -165,6 +179,19 @@ void PlanarBeam::evaluate(const LocalState& st, LocalResidual& out, bool tangent
   H(3, 3) = ddg * fP;
   Kz += H + H.transpose();
   Kz.diagonal() -= H.diagonal();
+  if (eta_ > 0.0) {
+    // ∂(η C ε̇)/∂z at fixed q̇: rows żᵀ ∂²d_k/∂z² (d3 = Δθ is linear), then Bzᵀ of it; and
+    // C_t = Tᵀ η Bzᵀ C Bz T / L0.
+    Eigen::Matrix<double, 3, 4> D = Eigen::Matrix<double, 3, 4>::Zero();
+    const double zx = zdot[0], zy = zdot[1], za = zdot[2], zt = zdot[3];
+    D.row(0) << -g * s * za + dg * c * zt, g * c * za + dg * s * zt, -g * s * zx + g * c * zy - g * P1 * za + dg * P2 * zt,
+        dg * c * zx + dg * s * zy + dg * P2 * za + ddg * P1 * zt;
+    D.row(1) << -g * c * za - dg * s * zt, -g * s * za + dg * c * zt, -g * c * zx - g * s * zy - g * P2 * za - dg * P1 * zt,
+        -dg * s * zx + dg * c * zy - dg * P1 * za + ddg * P2 * zt;
+    const Eigen::Matrix<double, 3, 4> CB = (eta_ / L0_) * c_.asDiagonal() * Bz;
+    Kz.noalias() += CB.transpose() * D;
+    out.C.topLeftCorner<6, 6>().noalias() += kT.transpose() * (Bz.transpose() * CB) * kT;
+  }
   out.K.topLeftCorner<6, 6>().noalias() += kT.transpose() * Kz * kT;
 
   for (int k = 0; k < 2; ++k) {
@@ -187,6 +214,13 @@ void PlanarBeam::output(const LocalState& s, Eigen::VectorXd& values) const {
   const Eigen::Vector3d e = strain(s.q);
   values.resize(6);
   values.head<3>() = c_.cwiseProduct(e);
+  if (eta_ > 0.0) {
+    // The whole section forces C (ε + η ε̇): ε̇ by the derivative of ε along q̇ (forward AD).
+    std::array<ad::AD1, 6> q;
+    for (int k = 0; k < 6; ++k) q[static_cast<size_t>(k)] = ad::AD1(s.q[k], ad::Derivatives1::Constant(1, s.v[k]));
+    const Eigen::Matrix<ad::AD1, 3, 1> ea = strain_of<ad::AD1>(q.data());
+    for (int k = 0; k < 3; ++k) values[k] += eta_ * c_[k] * ea[k].derivatives()[0];
+  }
   values.tail<3>() = e;
 }
 

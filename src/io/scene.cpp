@@ -97,6 +97,7 @@ const Schema& tolerance_schema() {
       {"rtol", KeyType::Number, "–", "0", "relative tolerance of the local error of q per unit step (the run's length t_end as the unit): the errors the steps leave add up to about rtol‖q‖∞ + atol at t_end", Range::non_negative(), "tolerance"},
       {"atol", KeyType::Number, "m, rad", "0", "absolute tolerance of the same (at least one of rtol, atol > 0)", Range::non_negative(), "tolerance (m, rad)"},
       {"estimate", KeyType::Choice, "–", "`filtered`", "the local error estimate: `filtered` (C·h³·q⃛ filtered by the iteration matrix k = ⌈ln(t_end/h)⌉ times, so the modes ρ∞ damps do not drive h; k + 1 extra residuals and back-substitutions per step) or `local` (C·h³·q⃛ unfiltered: cheaper per step, better where no stiff undamped content is excited, e.g. Andrews; docs/theory/adaptive_steps.md §3b)", {}, "", "", {"filtered", "local"}},
+      {"hold", KeyType::Number, "–", "1 (off)", "step-size hysteresis: an accepted step whose controller asks for growth by less than this factor keeps its h, so that modified Newton keeps its factorization (Hairer & Wanner II, Sec. IV.8, RADAU5: 1.2); at least 1", Range::at_least(1.0), "factor"},
   }};
   return s;
 }
@@ -261,6 +262,7 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
     rs.tolerance_rtol = t.number("rtol", 0.0);
     rs.tolerance_atol = t.number("atol", 0.0);
     rs.filtered_error_estimate = t.choice("estimate", 0) == 0;
+    rs.tolerance_hold = t.number("hold", 1.0);
     if (!(rs.tolerance_rtol > 0.0 || rs.tolerance_atol > 0.0))
       rd.fail(s.node("tolerance"), "solver.tolerance", "expected rtol > 0 or atol > 0 (a tolerance of zero asks for h = 0)");
     if (rs.step_cuts > 0)

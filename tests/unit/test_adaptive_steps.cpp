@@ -181,6 +181,35 @@ TEST(StepControllerPlan, FixedAndAdaptiveLanding) {
   EXPECT_EQ(ad.state().h, 0.5 * q.h);
 }
 
+// solver.tolerance.hold (RADAU5's hysteresis, Hairer & Wanner II, IV.8): a proposed growth below
+// the factor keeps h exactly (so modified Newton keeps S_t); a larger growth and every decrease are
+// taken as without it (hold = 1, the default, is the controller unchanged).
+TEST(StepControllerPlan, HoldKeepsTheStepForASmallGrowthOnly) {
+  AdaptiveOptions o;
+  o.rtol = 1e-3;
+  o.h_min = 1e-12;
+  // The ratio of the h after a second accepted step (error e2, after e1 = 0.35) to that step's h.
+  auto ratio = [&](double hold, double e2) {
+    o.hold = hold;
+    Adaptive ad(0.01, 1.0, o);
+    StepPlan p = ad.plan(0.0);
+    EXPECT_TRUE(ad.converged(p, 0.35));
+    p = ad.plan(p.t_next);
+    EXPECT_FALSE(p.resized);
+    EXPECT_TRUE(ad.converged(p, e2));
+    return ad.state().h / p.h;
+  };
+  // e2 = 0.35 after 0.35: the PI controller asks 0.9 · 0.35^(−0.15) = 1.054: held at 1.2, taken at 1.
+  EXPECT_NEAR(ratio(1.0, 0.35), 0.9 * std::pow(0.35, -0.15), 1e-12);
+  EXPECT_EQ(ratio(1.2, 0.35), 1.0);
+  // A small error asks for more than 1.2 (the clamp, 2): taken in full, as without the hold.
+  EXPECT_EQ(ratio(1.2, 1e-3), ratio(1.0, 1e-3));
+  EXPECT_GT(ratio(1.2, 1e-3), 1.2);
+  // A decrease is never held.
+  EXPECT_EQ(ratio(1.2, 0.99), ratio(1.0, 0.99));
+  EXPECT_LT(ratio(1.2, 0.99), 1.0);
+}
+
 TEST(AdaptiveSteps, BadKeysAreNamed) {
   const std::string base = "name: x\nbodies: [{name: b, type: particle, mass: 1, position: [0, 0]}]\n";
   // Each scene's tail and the message its error must contain.

@@ -74,6 +74,8 @@ struct Props {
   double EA = 10.0, GA = 6.0, EI = 1.5, rhoA = 2.0, rhoI = 0.3;
 };
 
+Vector3d p_stiffness(const Props& p) { return Vector3d(p.EA, p.GA, p.EI); }
+
 /// A beam from A = (x_a, θ_a) along `angle` with length L whose end sections turn by `turn`
 /// (a reference arc; 0: straight). The node angles are random (offsets φ_i ≠ 0).
 struct Specimen {
@@ -108,6 +110,17 @@ VectorXd moved(const VectorXd& q, double beta, const Vector2d& c) {
     out[3 * k + 2] = q[3 * k + 2] + beta;
   }
   return out;
+}
+
+/// q_ref with the nodes moved by up to 0.3 L and the angles by up to ±1.2 rad, then a rigid motion
+/// by up to ±20 rad (additive angles).
+VectorXd deformed_and_moved(std::mt19937& rng, const VectorXd& q_ref, double L) {
+  VectorXd dq(6);
+  for (int k = 0; k < 2; ++k) {
+    dq.segment<2>(3 * k) = Vector2d(uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3)) * L;
+    dq[3 * k + 2] = uniform(rng, -1.2, 1.2);
+  }
+  return moved(q_ref + dq, uniform(rng, -20.0, 20.0), Vector2d(uniform(rng, -2, 2), uniform(rng, -2, 2)));
 }
 
 /// W(q) and its exact gradient and Hessian by nested automatic differentiation (AD2).
@@ -157,12 +170,7 @@ TEST(PlanarBeamTangents, MatchCentralDifferencesAtRandomDeformedStates) {
       LocalState s = state(q_ref);
       s.load_factor = 0.7;
       if (sample > 0) {
-        VectorXd dq(6);
-        for (int k = 0; k < 2; ++k) {
-          dq.segment<2>(3 * k) = Vector2d(uniform(rng, -0.3, 0.3), uniform(rng, -0.3, 0.3)) * L;
-          dq[3 * k + 2] = uniform(rng, -1.2, 1.2);
-        }
-        s.q = moved(q_ref + dq, uniform(rng, -20.0, 20.0), Vector2d(uniform(rng, -2, 2), uniform(rng, -2, 2)));
+        s.q = deformed_and_moved(rng, q_ref, L);
         s.v = VectorXd::Random(6) * 3.0;
         s.qdd = VectorXd::Random(6) * 5.0;
       }
@@ -669,6 +677,85 @@ TEST(PlanarBeamInput, RejectsInvalidPropertiesNodesAndGeometryWithAClearMessage)
 }
 
 // Cost is measured in benchmarks, not in tests (docs/theory/planar_beam.md has the numbers).
+
+
+// ------------------------------------------------------------------ material damping
+
+// Kelvin–Voigt damping f = C (ε + η ε̇) (planar_beam.hpp): K = ∂r/∂q at fixed q̇, C = ∂r/∂q̇ against
+// central differences at random deformed, rotated and moving states of straight and curved
+// references (η = 0.3 s, velocities up to 3: viscous and elastic section forces of one order); no
+// force along a rigid motion (ε̇ = 0); dissipated power q̇ᵀ(r(q̇) − r(0)) = L0 η ε̇ᵀ C ε̇ ≥ 0 with
+// ε̇ the derivative of the strain along q̇ (central differences); η = 0 is the elastic element bit
+// for bit. Mutations — the undamped element's K and C — are rejected by the same check.
+TEST(PlanarBeamDamping, TangentsMatchCentralDifferencesAndTheDissipationIsEtaEpsDotCEpsDot) {
+  std::mt19937 rng(17);
+  const Props p;
+  const double L = 0.8, eta = 0.3;
+  double worst_K = 0.0, worst_C = 0.0, mutation_K = 1e300, mutation_C = 1e300;
+  for (double turn : {0.0, 0.9, -2.5}) {
+    const Specimen sp = specimen(rng, p, L, turn);
+    const PlanarBeam damped("damped", 0, 1, p.EA, p.GA, p.EI, p.rhoA, p.rhoI, sp.a, sp.b, sp.sec_a, sp.sec_b,
+                            Vector2d(0.0, -9.81), eta);
+    const PlanarBeam elastic("elastic", 0, 1, p.EA, p.GA, p.EI, p.rhoA, p.rhoI, sp.a, sp.b, sp.sec_a, sp.sec_b,
+                             Vector2d(0.0, -9.81), 0.0);
+    const PlanarBeam plain("plain", 0, 1, p.EA, p.GA, p.EI, p.rhoA, p.rhoI, sp.a, sp.b, sp.sec_a, sp.sec_b,
+                           Vector2d(0.0, -9.81));
+    const VectorXd q_ref = local_q(sp.a, sp.b);
+    for (int sample = 0; sample < 6; ++sample) {
+      LocalState s = state(q_ref);
+      if (sample > 0) {
+        s.q = deformed_and_moved(rng, q_ref, L);
+      }
+      s.v = VectorXd::Random(6) * 3.0;
+      s.qdd = VectorXd::Random(6) * 5.0;
+      const LocalResidual t = element_tangents(damped, s);
+      ASSERT_LE((t.r - element_residual(damped, s)).norm(), 1e-14 * t.r.norm());
+      const MatrixXd Kfd = central_differences(damped, s, Wrt::q), Cfd = central_differences(damped, s, Wrt::v);
+      const double eK = relative_error(Kfd, t.K), eC = relative_error(Cfd, t.C);
+      EXPECT_LE(eK, 1e-6) << "sample " << sample;
+      EXPECT_LE(eC, 1e-6) << "sample " << sample;
+      EXPECT_LE(relative_error(central_differences(damped, s, Wrt::qdd), t.M), 1e-6);
+      const LocalResidual te = element_tangents(elastic, s), tp = element_tangents(plain, s);
+      EXPECT_EQ(te.r, tp.r);  // η = 0 is the elastic element, bit for bit
+      EXPECT_EQ(te.K, tp.K);
+      worst_K = std::max(worst_K, eK);
+      worst_C = std::max(worst_C, eC);
+      mutation_K = std::min(mutation_K, relative_error(Kfd, te.K));
+      mutation_C = std::min(mutation_C, relative_error(Cfd, te.C));
+      // Dissipated power against ε̇ by central differences of ε along q̇.
+      LocalState moving = s;
+      moving.qdd.setZero();
+      moving.load_factor = 0.0;
+      LocalState still = moving;
+      still.v.setZero();
+      const double step = 1e-6;
+      const Vector3d rate = (damped.strain(s.q + step * s.v) - damped.strain(s.q - step * s.v)) / (2.0 * step);
+      const double power = s.v.dot(element_residual(damped, moving) - element_residual(damped, still));
+      const double expected = damped.reference_length() * eta * rate.dot(p_stiffness(p).cwiseProduct(rate));
+      EXPECT_NEAR(power, expected, 1e-7 * expected);
+      // A rigid motion: ẋ_i = u + ω e3 × x_i, θ̇_i = ω.
+      const Vector2d u(uniform(rng, -2, 2), uniform(rng, -2, 2));
+      const double w = uniform(rng, -2, 2);
+      LocalState rigid = moving;
+      for (int k = 0; k < 2; ++k) {
+        rigid.v.segment<2>(3 * k) = u + w * Vector2d(-s.q[3 * k + 1], s.q[3 * k]);
+        rigid.v[3 * k + 2] = w;
+      }
+      const VectorXd rd = element_residual(damped, rigid), re = element_residual(elastic, rigid);
+      EXPECT_LE((rd - re).norm(), 1e-12 * std::max(1.0, re.norm()));
+    }
+  }
+  std::printf("damped planar beam tangents vs central differences: K %.1e, C %.1e; mutations (undamped K, C): %.1e, %.1e\n",
+              worst_K, worst_C, mutation_K, mutation_C);
+  EXPECT_GT(std::min(mutation_K, mutation_C), 1e-3);
+  try {
+    PlanarBeam bad("bad", 0, 1, p.EA, p.GA, p.EI, p.rhoA, p.rhoI, Vector3d(0, 0, 0), Vector3d(1, 0, 0), 0.0, 0.0,
+                   Vector2d::Zero(), -1.0);
+    ADD_FAILURE() << "a negative eta was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("planar beam 'bad': the material damping eta"), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace
 }  // namespace alphaflex

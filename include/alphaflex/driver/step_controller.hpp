@@ -51,6 +51,11 @@ struct AdaptiveOptions {
   /// Times the steps land on besides (a load's or driver's kinks; sorted), so that a short pulse is
   /// not stepped over while nothing moves.
   std::vector<double> breakpoints;
+  /// Hysteresis of the step size (solver.tolerance.hold): an accepted step whose controller asks
+  /// for growth by less than this factor keeps its h, so that modified Newton keeps its
+  /// factorization of S_t (which belongs to one h). Hairer & Wanner, Solving ODEs II, Sec. IV.8,
+  /// RADAU5's WORK(5), WORK(6) = 1, 1.2. 1: off (every proposal taken).
+  double hold = 1.0;
   bool enabled() const { return rtol > 0.0 || atol > 0.0; }
 };
 

@@ -44,6 +44,15 @@
 // O(|θ|) = O(L0 κ) and vanishes under mesh refinement; for a rigid motion of a straight element
 // (θ = 0) the kinetic energy is exact.
 //
+// Material damping (Kelvin–Voigt, stiffness-proportional in the section; docs/theory/beam.md,
+// Material damping): with η = damping() > 0 the section forces are f = C (ε + η ε̇),
+// ε̇ the objective rate of the strain measure,
+//   ε̇ = B_ε v,  B_ε = ∂ε/∂δ = T_SE(3)(d)⁻¹ [−Ad(H_AB⁻¹) P_A, P_B] / L0,
+// (the derivative of d above along the nodes' velocities v = (ẋ_A, Ω_A, ẋ_B, Ω_B)), so that
+// r_d = L0 B_εᵀ η C ε̇, C_t = ∂r/∂v = η L0 B_εᵀ C B_ε and K gains the derivative of B_εᵀ C ε̇ in q
+// at fixed v (the AD1 Jacobian of the same closed-form kernel with the velocities as constants).
+// It dissipates L0 η ε̇ᵀ C ε̇ ≥ 0 and vanishes for every rigid motion (ε̇ = 0).
+//
 // Gravity: lumped consistently for the linear interpolation, −ρA L0/2 g on each node's translation,
 // times the load factor.
 //
@@ -71,10 +80,11 @@ class GeometricallyExactBeam final : public Element {
   /// `section_a`, `section_b`: the section frames at the two ends in that configuration (world
   /// components, column 1 along the beam axis); `gravity` in m/s². Throws std::invalid_argument for
   /// equal node ids, section frames that are not rotations, a zero reference length, or a relative
-  /// rotation between the end sections of π or more.
+  /// rotation between the end sections of π or more; `damping`: η ≥ 0 (s), the Kelvin–Voigt material
+  /// damping (header comment; a negative or non-finite η throws too).
   GeometricallyExactBeam(std::string name, int node_a, int node_b, const BeamSection& section,
                          const Pose<double>& pose_a, const Pose<double>& pose_b, const Eigen::Matrix3d& section_a,
-                         const Eigen::Matrix3d& section_b, const Eigen::Vector3d& gravity);
+                         const Eigen::Matrix3d& section_b, const Eigen::Vector3d& gravity, double damping = 0.0);
 
   const char* type() const override { return "beam"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<GeometricallyExactBeam>(*this); }
@@ -84,7 +94,7 @@ class GeometricallyExactBeam final : public Element {
   const char* structure() const override { return "beam"; }
   OutputCell output_cell() const override { return {CellShape::line, {0, 1}}; }
   /// {N, V2, V3, T, M2, M3, axial_strain, shear_strain_2, shear_strain_3, twist, curvature_2,
-  /// curvature_3}, scalars: section forces C ε (N, N·m) and strains ε, constant on the element,
+  /// curvature_3}, scalars: section forces C ε (N, N·m; C (ε + η ε̇) with material damping) and strains ε, constant on the element,
   /// section frame.
   std::vector<CellField> cell_fields() const override;
   void output(const LocalState& s, Eigen::VectorXd& values) const override;
@@ -102,7 +112,15 @@ class GeometricallyExactBeam final : public Element {
   /// r_el = ∂W/∂δ = Bᵀ C ε at the given poses, in closed form (header comment); instantiated for
   /// double and ad::FixedAD1<12>.
   template <class S>
-  Eigen::Matrix<S, 12, 1> elastic_residual_of(const Pose<S>& a, const Pose<S>& b) const;
+  Eigen::Matrix<S, 12, 1> elastic_residual_of(const Pose<S>& a, const Pose<S>& b) const {
+    return section_residual_of<S>(a, b, nullptr);
+  }
+  /// Bᵀ f with f = C (ε + η ε̇) (header comment): the elastic and material-damping residual at the
+  /// given poses and the nodes' velocities v (12 numbers; nullptr: f = C ε, the elastic residual).
+  template <class S>
+  Eigen::Matrix<S, 12, 1> section_residual_of(const Pose<S>& a, const Pose<S>& b, const double* v) const;
+  /// B_ε = ∂ε/∂δ at q (6 × 12), so that ε̇ = B_ε v (header comment, Material damping).
+  Eigen::Matrix<double, 6, 12> strain_rate_operator(const Eigen::VectorXd& q) const;
 
   /// r_el and, if K is given, K_el = ∂r_el/∂δ' at q (14 numbers): the closed-form residual and its
   /// AD1 Jacobian (what evaluate() uses).
@@ -112,6 +130,8 @@ class GeometricallyExactBeam final : public Element {
   void elastic_forces_from_energy(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* K = nullptr) const;
 
   const BeamSection& section() const { return section_; }
+  /// η (s), the material damping.
+  double damping() const { return eta_; }
   double reference_length() const { return L0_; }
   /// O_i = R_i0ᵀ R_sec,i (end 0 = A, 1 = B): the section frame at end i is R_i O_i.
   const Eigen::Matrix3d& section_offset(int end) const { return offset_[static_cast<size_t>(end)]; }
@@ -125,6 +145,7 @@ class GeometricallyExactBeam final : public Element {
   BeamSection section_;
   std::array<Eigen::Matrix3d, 2> offset_;
   double L0_ = 0.0;
+  double eta_ = 0.0;
   Vector6d eps0_ = Vector6d::Zero();
   Eigen::Vector3d g_ = Eigen::Vector3d::Zero();
 };

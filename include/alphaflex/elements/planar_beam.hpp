@@ -31,6 +31,11 @@
 //       rotary inertia has no gyroscopic term),
 //   gravity: −ρA L0/2 g on each node's (x, y), times LocalState::load_factor.
 //
+// Material damping (Kelvin–Voigt, as the SE(3) beam; docs/theory/beam.md, Material damping): with
+// η > 0 the section forces are f = C (ε + η ε̇), ε̇ = B q̇ / L0 (objective: ε is invariant
+// under rigid motions, so ε̇ = 0 along every one), so that r gains Bᵀ η C ε̇, C_t = ∂r/∂q̇ = η Bᵀ C B / L0 and K gains
+// η Bᵀ C (∂B/∂q q̇) / L0 besides the geometric term Σ_k f_k ∂²d_k/∂q² of the whole f.
+//
 // Limitations: g has a pole at |Δθ| = 2π; the reference must have |Δθ0| < π (checked; use shorter
 // elements for tighter curves) and the deformed element must keep |Δθ| well below 2π.
 #include <memory>
@@ -54,9 +59,10 @@ class PlanarBeam final : public Element {
   /// rotary inertia per length ρI (kg·m); `gravity` in m/s². Throws std::invalid_argument for a
   /// non-positive or non-finite property, equal node ids, non-finite states or angles, a zero
   /// reference length, or end sections turned by π or more relative to each other.
+  /// `damping`: η ≥ 0 (s), the Kelvin–Voigt material damping (header comment).
   PlanarBeam(std::string name, int node_a, int node_b, double EA, double GA, double EI, double rhoA, double rhoI,
              const Eigen::Vector3d& state_a, const Eigen::Vector3d& state_b, double section_angle_a,
-             double section_angle_b, const Eigen::Vector2d& gravity);
+             double section_angle_b, const Eigen::Vector2d& gravity, double damping = 0.0);
 
   const char* type() const override { return "beam"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<PlanarBeam>(*this); }
@@ -65,7 +71,8 @@ class PlanarBeam final : public Element {
   /// Drawn as a line segment between its nodes in the results' "beams" grid.
   const char* structure() const override { return "beam"; }
   OutputCell output_cell() const override { return {CellShape::line, {0, 1}}; }
-  /// {N, V, M, axial_strain, shear_strain, curvature}, scalars: section forces C ε (N, N, N·m) and
+  /// {N, V, M, axial_strain, shear_strain, curvature}, scalars: section forces C ε (N, N, N·m;
+  /// C (ε + η ε̇) with material damping) and
   /// strains ε, constant on the element, in the section frame.
   std::vector<CellField> cell_fields() const override;
   void output(const LocalState& s, Eigen::VectorXd& values) const override;
@@ -100,6 +107,8 @@ class PlanarBeam final : public Element {
   const Eigen::Vector3d& stiffness() const { return c_; }
   double rhoA() const { return rhoA_; }
   double rhoI() const { return rhoI_; }
+  /// η (s), the material damping.
+  double damping() const { return eta_; }
   const Eigen::Vector2d& gravity() const { return g_; }
 
   /// g(α) = (α/2)/sin(α/2) (the arc-to-chord ratio of a circular arc turning by α) and its
@@ -146,6 +155,7 @@ class PlanarBeam final : public Element {
 
   Eigen::Vector3d c_;
   double rhoA_, rhoI_;
+  double eta_ = 0.0;
   std::array<double, 2> offset_{};
   double L0_ = 0.0;
   Eigen::Vector3d eps0_ = Eigen::Vector3d::Zero();

@@ -35,6 +35,7 @@ struct RunSettings {
   double t_end = 1.0;   ///< final time (s)
   /// Adaptive steps (solver.tolerance: rtol, atol; 0, 0: fixed steps), bounds of h (s; 0: defaults).
   double tolerance_rtol = 0.0, tolerance_atol = 0.0, h_min = 0.0, h_max = 0.0;
+  double tolerance_hold = 1.0;  ///< solver.tolerance.hold (AdaptiveOptions::hold)
   /// solver.tolerance.estimate: filter the local error estimate by the iteration matrix (true)
   /// or take it unfiltered (false); docs/theory/adaptive_steps.md §3b.
   bool filtered_error_estimate = true;

@@ -33,6 +33,7 @@ void read_beam_block_2d(const Item& it) {
     const Section p(it.rd, sn, key, planar_section_schema());
     EA = p.number("EA"), GA = p.number("GA"), EI = p.number("EI"), rhoA = p.number("rhoA"), rhoI = p.number("rhoI");
   }
+  const double eta = it.keys.number("damping", 0.0);
   const MeshData& mesh = it.sb.blocks.mesh;
   for (size_t e = 0; e < block.elements.size(); ++e) {
     const int ma = block.elements[e][0], mb = block.elements[e][1];
@@ -47,7 +48,7 @@ void read_beam_block_2d(const Item& it) {
     try {
       it.model.add_element(std::make_unique<PlanarBeam>(it.name + "[" + std::to_string(e) + "]", n[0], n[1], EA, GA, EI, rhoA, rhoI,
                                                         it.model.node(n[0]).q0, it.model.node(n[1]).q0, angle, angle,
-                                                        Eigen::Vector2d(it.sb.gravity.head<2>())));
+                                                        Eigen::Vector2d(it.sb.gravity.head<2>()), eta));
     } catch (const std::invalid_argument& ex) {
       std::ostringstream os;
       os << "element " << block.element_tags[e] << " of group '" << block.name << "': " << ex.what();
@@ -62,7 +63,8 @@ void register_beams_2d(SceneTypes& t) {
   t.blocks.add("beams", Schema{"beams.2d", {
       {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in mesh order"},
       {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh (in the x-y plane), used by one beam only"},
-      {"section", KeyType::Map, "–", kRequired, "`beams.2d.section` or `beams.section.material`"}}},
+      {"section", KeyType::Map, "–", kRequired, "`beams.2d.section` or `beams.section.material`"},
+      {"damping", KeyType::Number, "s", "0", "η: Kelvin–Voigt material damping, section forces C (ε + η ε̇); a bending mode of frequency ω gets ζ = ηω/2 (docs/theory/beam.md)", Range::non_negative(), "material damping (s)"}}},
       {"name, group, section", read_beam_block_2d});
   t.parts.push_back(&planar_section_schema());
 }

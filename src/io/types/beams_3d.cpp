@@ -43,6 +43,8 @@ void read_beam_block_3d(const Item& it) {
   const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
   const BeamSection section = read_beam_section(it.rd, k.node("section"), it.at("section"));
   const Eigen::Vector3d orient = it.sb.blocks.placed(k.text("group"), k.direction("orientation"));
+  if (k.has("damping") && k.has("reduction"))
+    it.rd.fail(k.node("damping"), it.at("damping"), "material damping is for a full-mesh block; a block with `reduction` has none (remove one of the two)");
   if (k.has("reduction")) return read_reduced_beam_block_3d(it, block, section, orient);
   add_beam_elements(it, block, section, orient, it.model,
                     [&](int m, const Eigen::VectorXd& q0) { return block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6)); });
@@ -54,6 +56,7 @@ std::vector<int> add_beam_elements(const Item& it, const MeshLineBlock& block, c
                                    Model& model, const BlockNodeOf& node_of) {
   const Section& k = it.keys;
   const MeshData& mesh = it.sb.blocks.mesh;
+  const double eta = k.number("damping", 0.0);  // a reduced block has none (read_beam_block_3d)
   std::vector<int> ids;
   for (size_t e = 0; e < block.elements.size(); ++e) {
     const int ma = block.elements[e][0], mb = block.elements[e][1];
@@ -78,7 +81,7 @@ std::vector<int> add_beam_elements(const Item& it, const MeshLineBlock& block, c
       ids.push_back(static_cast<int>(model.elements().size()));
       model.add_element(std::make_unique<GeometricallyExactBeam>(
           it.name + "[" + std::to_string(e) + "]", n[0], n[1], section, pose_of(model.node(n[0]).q0.data()),
-          pose_of(model.node(n[1]).q0.data()), sec, sec, it.sb.gravity));
+          pose_of(model.node(n[1]).q0.data()), sec, sec, it.sb.gravity, eta));
     } catch (const std::invalid_argument& ex) {
       std::ostringstream os;
       os << "element " << block.element_tags[e] << " of group '" << block.name << "': " << ex.what();
@@ -123,7 +126,8 @@ void register_beams_3d(SceneTypes& t) {
       {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh, used by one beam only"},
       {"section", KeyType::Map, "–", kRequired, "`beams.section.material` or `beams.section.properties`"},
       {"orientation", KeyType::Vec3, "–", kRequired, "direction of the section's axis 2 (projected ⊥ to each element); not parallel to an element"},
-      {"reduction", KeyType::Map, "–", "– (the full mesh)", "`beams.reduction`: the block as one reduced flexible body (docs/theory/reduced_bodies.md)"}}},
+      {"reduction", KeyType::Map, "–", "– (the full mesh)", "`beams.reduction`: the block as one reduced flexible body (docs/theory/reduced_bodies.md)"},
+      {"damping", KeyType::Number, "s", "0", "η: Kelvin–Voigt material damping, section forces C (ε + η ε̇); a bending mode of frequency ω gets ζ = ηω/2 (docs/theory/beam.md); not with `reduction`", Range::non_negative(), "material damping (s)"}}},
       {"name, group, section, orientation", read_beam_block_3d});
   t.parts.push_back(&material_schema());
   t.parts.push_back(&properties_schema());
