@@ -14,7 +14,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # numbers in reports at a fraction of the compile time of -g.
 mkdir -p "$dir"
 cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
-      -DALPHAFLEX_SANITIZE=ON > "$dir/configure.log" 2>&1 || { cat "$dir/configure.log"; exit 1; }
+      -DALPHAFLEX_SANITIZE=ON -DALPHAFLEX_UNITY_BUILD=ON > "$dir/configure.log" 2>&1 || { cat "$dir/configure.log"; exit 1; }
 start=$(date +%s)
 cmake --build "$dir" -j"$jobs" --target unit_tests fuzz_inputs
 echo "sanitize: build $(( $(date +%s) - start )) s"

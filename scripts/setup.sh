@@ -11,7 +11,7 @@ cd "$root"
 bash scripts/install-deps.sh
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DALPHAFLEX_UNITY_BUILD=ON
 case "$mode" in
   run)
     cmake --build build -j"$jobs" --target alphaflex_exe
