@@ -131,12 +131,17 @@ Mat petsc_matrix(const SparseMatrix& A) {
   for (PetscInt i = 0; i < n; ++i) nnz[static_cast<size_t>(i)] = R.outerIndexPtr()[i + 1] - R.outerIndexPtr()[i];
   Mat P = nullptr;
   check_petsc(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 0, nnz.data(), &P), "MatCreateSeqAIJ");
-  for (PetscInt i = 0; i < n; ++i)
-    check_petsc(MatSetValues(P, 1, &i, nnz[static_cast<size_t>(i)], R.innerIndexPtr() + R.outerIndexPtr()[i],
-                             R.valuePtr() + R.outerIndexPtr()[i], INSERT_VALUES),
-                "MatSetValues");
-  check_petsc(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-  check_petsc(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  try {
+    for (PetscInt i = 0; i < n; ++i)
+      check_petsc(MatSetValues(P, 1, &i, nnz[static_cast<size_t>(i)], R.innerIndexPtr() + R.outerIndexPtr()[i],
+                               R.valuePtr() + R.outerIndexPtr()[i], INSERT_VALUES),
+                  "MatSetValues");
+    check_petsc(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check_petsc(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  } catch (...) {
+    MatDestroy(&P);  // created here, so destroyed here when the copy fails
+    throw;
+  }
   return P;
 }
 

@@ -188,8 +188,11 @@ TEST(ReducedInterfaceTie, IsExactAtACraigBamptonInterfaceNode) {
 // ~(PL²/EI)² ~ 1e-10, and the frame does not move). Reference: the linear K of the same 16
 // elements (assemble_block on the full scene's model), root clamped, solved for the same load.
 TEST(ReducedInterfaceTie, ReducedCantileverHasTheFullLinearStaticTipDeflection) {
-  // Load factor 1e-6 of P = 10 EI/L² along y, plus an axial and an out-of-plane part.
-  const std::vector<std::string> load = {"load.factor=1e-6", "forces.0.value=[-2.0, P, 3.0]"};
+  // Load factor 1e-6 of P = 10 EI/L² along y, plus an axial and an out-of-plane part, and a tip
+  // moment (world components), so that the tie's reaction has a force and a moment to carry.
+  const std::vector<std::string> load = {"load.factor=1e-6",
+                                         "forces=[{name: tip_force, type: force, body: tip, value: [-2.0, P, 3.0]},"
+                                         "{name: tip_moment, type: moment, body: tip, value: [0.5, -1.0, 2.0]}]"};
   const ElasticaBlock full(load);
   const Model& model = *full.scene.model;
   const BlockMatrices block = assemble_block(model, full.elements);
@@ -202,8 +205,13 @@ TEST(ReducedInterfaceTie, ReducedCantileverHasTheFullLinearStaticTipDeflection) 
     for (Eigen::Index j = 0; j < n; ++j) K(i, j) = block.K(free_rows[i], free_rows[j]);
   VectorXd f = VectorXd::Zero(n);
   const Vector3d F = 1e-6 * Vector3d(-2.0, 10.0, 3.0);  // δx rows: world components
-  for (int k = 0; k < 3; ++k)
+  const Vector3d M = 1e-6 * Vector3d(0.5, -1.0, 2.0);   // δθ rows: the node frame's components
+  const Matrix3d R_tip = pose_of(model.node(full.tip).q0.data()).R;
+  const Vector3d M_node = R_tip.transpose() * M;
+  for (int k = 0; k < 3; ++k) {
     f[std::find(free_rows.begin(), free_rows.end(), block.row_of(full.tip, k)) - free_rows.begin()] = F[k];
+    f[std::find(free_rows.begin(), free_rows.end(), block.row_of(full.tip, 3 + k)) - free_rows.begin()] = M_node[k];
+  }
   const VectorXd u = K.ldlt().solve(f);
   Vector3d tip;
   for (int k = 0; k < 3; ++k) tip[k] = u[std::find(free_rows.begin(), free_rows.end(), block.row_of(full.tip, k)) - free_rows.begin()];
@@ -216,7 +224,13 @@ TEST(ReducedInterfaceTie, ReducedCantileverHasTheFullLinearStaticTipDeflection) 
     o.push_back("sensors=[{name: ux, type: point_displacement, body: tip, component: x},"
                 "{name: uy, type: point_displacement, body: tip, component: y},"
                 "{name: uz, type: point_displacement, body: tip, component: z},"
-                "{name: fy, type: joint_reaction, joint: clamp, component: fy}]");
+                "{name: fy, type: joint_reaction, joint: clamp, component: fy},"
+                "{name: tfx, type: joint_reaction, joint: 'cantilever:tie:tip', component: fx},"
+                "{name: tfy, type: joint_reaction, joint: 'cantilever:tie:tip', component: fy},"
+                "{name: tfz, type: joint_reaction, joint: 'cantilever:tie:tip', component: fz},"
+                "{name: tmx, type: joint_reaction, joint: 'cantilever:tie:tip', component: mx},"
+                "{name: tmy, type: joint_reaction, joint: 'cantilever:tie:tip', component: my},"
+                "{name: tmz, type: joint_reaction, joint: 'cantilever:tie:tip', component: mz}]");
     Scene s = read_scene(testing::source_path("inputs/beam_elastica.yaml"), o);
     RunOptions opt;
     opt.write_results = false;
@@ -230,6 +244,14 @@ TEST(ReducedInterfaceTie, ReducedCantileverHasTheFullLinearStaticTipDeflection) 
     // The tie passes the tip load to the body: the clamp carries it all (reaction on the root
     // node, which the clamp holds: −F).
     EXPECT_NEAR(testing::final_value(r, "fy"), -F.y(), 1e-9 * F.y()) << reduction;
+    // Equilibrium of the tip node, which carries only the loads and the tie: the tie's reaction
+    // on it is −F and −M (the loads act at the node itself), in the joint frame (the node's
+    // frame, R_tip at rest). The node turns by ~M L/EI + P L²/(2 EI) ≈ 7e-6 rad under the load, which
+    // moves the components by that fraction: the bound is 2e-5 of |F| and |M|.
+    const Vector3d tf(testing::final_value(r, "tfx"), testing::final_value(r, "tfy"), testing::final_value(r, "tfz"));
+    const Vector3d tm(testing::final_value(r, "tmx"), testing::final_value(r, "tmy"), testing::final_value(r, "tmz"));
+    EXPECT_LT((tf + R_tip.transpose() * F).norm(), 2e-5 * F.norm()) << reduction << ": " << tf.transpose();
+    EXPECT_LT((tm + R_tip.transpose() * M).norm(), 2e-5 * M.norm()) << reduction << ": " << tm.transpose();
   }
 }
 

@@ -111,10 +111,21 @@ std::array<TimeFunctionPtr, 3> vector_function(const Item& it, const char* key, 
   return v;
 }
 
+std::string mesh_point_label(const MeshBlocks& b, int m) {
+  const auto pn = b.point_name.find(m);
+  return pn != b.point_name.end() ? pn->second : "node " + std::to_string(b.mesh.node_tags[static_cast<size_t>(m)]);
+}
+
 int block_node(const Item& it, int m, NodeKind kind, const Eigen::VectorXd& q0, const Eigen::VectorXd& v0) {
   MeshBlocks& b = it.sb.blocks;
   const size_t i = static_cast<size_t>(m);
   if (b.node_of[i] >= 0) return b.node_of[i];
+  // An inner point of a reduced block has no node (its motion is the body's): a block that shares
+  // it would be left unconnected (types/reduced_beams_3d.cpp).
+  const auto red = b.reduced.find(m);
+  if (red != b.reduced.end())
+    it.rd.fail(it.node, it.path, "mesh point '" + mesh_point_label(b, m) + "' is an inner point of the reduced block '" + red->second +
+                                     "': add it to that block's reduction.interface (a named point) so that the blocks stay connected");
   Node nd;
   nd.kind = kind;
   const auto pn = b.point_name.find(m);

@@ -64,6 +64,8 @@ std::array<TimeFunctionPtr, 3> vector_function(const Item& it, const char* key, 
 
 /// The model node of mesh node `m` of the block being read: made on first use (named after its
 /// mesh point, else BLOCK:TAG) with the initial state (q0, v0), shared by the blocks that meet there.
+/// A mesh point's name for messages: its physical point name, else "node TAG" (gmsh's tag).
+std::string mesh_point_label(const MeshBlocks& b, int m);
 int block_node(const Item& it, int m, NodeKind kind, const Eigen::VectorXd& q0, const Eigen::VectorXd& v0);
 /// The block of `blocks` (the mesh's line or surface blocks) named by the item's `group`, or a
 /// clear error listing them ("curve", "surface"); the group is then used (one block per group,

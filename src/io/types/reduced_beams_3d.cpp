@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "alphaflex/core/error.hpp"
 #include "alphaflex/elements/reduced_body.hpp"
 #include "alphaflex/joints/reduced_interface_tie.hpp"
 #include "alphaflex/modal/superelement.hpp"
@@ -65,11 +66,17 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
   const std::vector<int> elements = add_beam_elements(it, block, section, orient, scratch, [&](int m, const Eigen::VectorXd& q0) {
     int& id = in_block[m];
     if (id >= 0) return id;
+    const bool on_interface = std::find(mesh_interface.begin(), mesh_interface.end(), m) != mesh_interface.end();
+    // An inner point has no node of the run's model: a node another block made there already
+    // (a weld of two blocks) would be left unconnected, so the point must be an interface point.
+    if (!on_interface && mb.node_of[static_cast<size_t>(m)] >= 0)
+      it.rd.fail(rn["interface"], at + ".interface", "mesh point '" + mesh_point_label(mb, m) +
+                 "' of block '" + block.name + "' is shared with another block: add it to reduction.interface (a named point) so that the blocks stay connected");
     Node nd;
     nd.kind = NodeKind::Frame3D;
     nd.name = std::to_string(m);
     nd.q0 = q0;
-    if (std::find(mesh_interface.begin(), mesh_interface.end(), m) != mesh_interface.end()) {
+    if (on_interface) {
       const int run = interface_node[m] = block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6));
       nd.q0 = it.model.node(run).q0;
     }
@@ -85,6 +92,10 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
     rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes);
   } catch (const std::invalid_argument& e) {
     it.rd.fail(rn, at, "block '" + it.name + "': " + e.what());
+  } catch (const SolverError& e) {
+    // The eigensolver or MUMPS inside the reduction: every rank reduces the block identically, so
+    // every rank gets here, and the message names the block instead of only the solver.
+    it.rd.fail(rn, at, "block '" + it.name + "': the reduction failed: " + e.what());
   }
   // The block's other mesh nodes have no node in the run's model: their motion is the frame's and
   // the amplitudes' (ReducedBlock::node_pose).
