@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(build-essential cmake pkg-config git
       petsc-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev
-      libopenblas0-serial libgmsh-dev gmsh libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libsundials-dev
+      libopenblas0-serial libgmsh-dev gmsh libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libsundials-dev hyperfine
       slepc-dev python3-matplotlib python3-numpy python3-h5py python3-scipy paraview python3-paraview xvfb)
 missing=()
 for p in "${PKGS[@]}"; do

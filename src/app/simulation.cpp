@@ -394,12 +394,42 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     loop.observe(0, s, true);
   }
   const double acc_start = sub.max_abs(s.qdd);
+  // Each reaction's own size over the run (committed steps and the start): the scale its round-off
+  // is judged against (integrators/round_off_floor.hpp).
+  Eigen::VectorXd max_lambda = s.lambda.cwiseAbs();
+  loop.add_observer([&](const StepEvent& e) {
+    if (e.state.lambda.size() == max_lambda.size()) max_lambda = max_lambda.cwiseMax(e.state.lambda.cwiseAbs());
+  });
   loop.run(s, first, last_written, counters);
   progress.finish();
   {
-    const std::string w = round_off_floor_warning(rs.parameters, controller->state().h_min > 0.0 ? controller->state().h_min : h,
-                                                  sub.max_abs(s.q), std::max(acc_start, sub.max_abs(s.qdd)));
-    if (!w.empty()) {
+    const double h_small = controller->state().h_min > 0.0 ? controller->state().h_min : h;
+    const double q_norm = sub.max_abs(s.q);
+    std::vector<std::string> ws = {round_off_floor_warning(rs.parameters, h_small, q_norm,
+                                                           std::max(acc_start, sub.max_abs(s.qdd)))};
+    if (model.num_multipliers() > 0) {
+      // The joint whose estimate is the largest share of its own reaction, from the rank holding it.
+      const std::vector<ReactionScale> local = reaction_scales(system, s, rs.parameters, h_small, max_lambda);
+      const ReactionScale* worst = nullptr;
+      double share = -1.0;
+      for (const ReactionScale& r : local) {
+        const double x = r.reaction > 0.0 ? reaction_round_off(rs.parameters, h_small, q_norm, r) / r.reaction : 0.0;
+        if (x > share) share = x, worst = &r;
+      }
+      const int root = sub.rank_of_max(share);
+      std::ostringstream enc;
+      enc.precision(17);
+      if (worst) enc << worst->mass << ' ' << worst->stiffness << ' ' << worst->reaction << ' ' << worst->joint;
+      std::istringstream dec(sub.broadcast(enc.str(), root));
+      ReactionScale r;
+      if (dec >> r.mass >> r.stiffness >> r.reaction) {
+        dec.get();
+        std::getline(dec, r.joint);
+        ws.push_back(reaction_round_off_warning(rs.parameters, h_small, q_norm, {r}));
+      }
+    }
+    for (const std::string& w : ws) {
+      if (w.empty()) continue;
       sum.warnings.push_back(w);
       if (opt.verbose && rank == 0) std::cout << "  warning: " << w << std::endl;
     }

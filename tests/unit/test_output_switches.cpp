@@ -80,5 +80,35 @@ TEST(RoundOffFloor, WarnsBelowTheStepItRecommends) {
   EXPECT_NE(round_off_floor_warning(p, 1e-6, q, 0.0).find("q̈ = 0"), std::string::npos);
 }
 
+// Per reaction (round_off_floor.hpp): the estimate ε‖q‖(β'm + b) is judged against each joint's own
+// largest |λ|; the joint with the largest share is named, the h it recommends is where its share is
+// 1e-3 (β' ∝ 1/h², b fixed), and a joint whose b alone exceeds the share gets no h. Joints that
+// carried no load are not judged. The figures: the 0.1-s spin-up's hub (m = 0.4 kg, b = 2.8e7,
+// Λ = 3.65e-3 N·m, ‖q‖ = 10 m, measured by this run: docs/performance.md).
+TEST(RoundOffFloor, PerReactionShareAndStep) {
+  const AlphaParameters p = AlphaParameters::from_rho_inf(0.7);
+  const double eps = std::numeric_limits<double>::epsilon(), q = 10.0;
+  ReactionScale hub{"hub", 0.4, 2.8e7, 3.65e-3};
+  EXPECT_NEAR(reaction_round_off(p, 1e-4, q, hub), eps * q * (p.beta_prime(1e-4) * 0.4 + 2.8e7), 1e-15);
+  // h at which the share is 1e-3: β' = (1e-3 Λ/(ε‖q‖) − b)/m.
+  const double beta_needed = (1e-3 * hub.reaction / (eps * q) - hub.stiffness) / hub.mass;
+  const double h_ok = 1e-4 * std::sqrt(p.beta_prime(1e-4) / beta_needed);
+  EXPECT_TRUE(reaction_round_off_warning(p, 1.01 * h_ok, q, {hub}).empty());
+  const std::string w = reaction_round_off_warning(p, 0.99 * h_ok, q, {hub});
+  EXPECT_NE(w.find("joint 'hub'"), std::string::npos) << w;
+  EXPECT_NE(w.find("positions and velocities are not affected"), std::string::npos) << w;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", h_ok);
+  EXPECT_NE(w.find(std::string("use h >= ") + buf + " s"), std::string::npos) << w;
+  EXPECT_TRUE(reaction_round_off_warning(p, 1e-4, q, {hub}).empty());  // share 1.1e-4 at h = 1e-4
+  // The worst share is named, not the first joint; unloaded joints are skipped.
+  ReactionScale big{"big", 0.4, 2.8e7, 1e3}, idle{"idle", 1e9, 1e9, 0.0};
+  EXPECT_NE(reaction_round_off_warning(p, 5e-6, q, {big, hub, idle}).find("joint 'hub'"), std::string::npos);
+  EXPECT_TRUE(reaction_round_off_warning(p, 1e-9, q, {idle}).empty());
+  // A stiffness alone above 1e-3 of the reaction: no step size helps, and the message says so.
+  ReactionScale stiff{"stiff", 1.0, 1e14, 1.0};
+  EXPECT_NE(reaction_round_off_warning(p, 1.0, q, {stiff}).find("No step size"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace alphaflex
