@@ -16,6 +16,11 @@ H (a much finer step than any measured). `--doc NAME` writes the table and the f
 error between the markers `<!-- NAME: begin -->` and `<!-- NAME: end -->` of docs/performance_notes.md
 and of docs/performance.md (scripts/benchmark.py copies the notes under its tables).
 
+Factorizations per accepted step come from the summary's count of numeric factorizations (the
+consistent start's included). `--startup` also measures the process start-up, interleaved: the scene
+run for two steps of 1e-7 s before each pair (tol i, h i); the median of its CPU is subtracted from
+each run's CPU for the integration-only figures, and both ratios are printed.
+
 Example (the damped struck beam, issue 17's third target; ~3 min of CPU):
   /usr/bin/python3 scripts/adaptive_work_precision.py --exe build/alphaflex --scene inputs/beam_impulse_damped.yaml \
       --reference-h 6.25e-5 --sensor tip_y --absolute --target 1e-5 --repeat 1 --doc adaptive_struck_beam \
@@ -24,8 +29,8 @@ Example (the damped struck beam, issue 17's third target; ~3 min of CPU):
 Example (the hammer-struck damped beam, issue 17's fourth round; the reference h = 1e-5 s lands on
 the blow's three breakpoints, none of the measured fixed h does):
   /usr/bin/python3 scripts/adaptive_work_precision.py --exe build/alphaflex --scene inputs/beam_hammer_damped.yaml \
-      --reference-h 5e-6 --sensor tip_y --absolute --target 1e-5 --repeat 1 --doc adaptive_hammer \
-      --adaptive-set solver.tolerance.hold=1.2 --tol 1e-3 1e-4 1e-5 1e-6 --h 4e-4 2e-4 1e-4 5e-5 2.5e-5 1.25e-5
+      --reference-h 5e-6 --sensor tip_y --absolute --target 1e-4 --repeat 1 --doc adaptive_hammer \
+      --startup --tol 1e-3 1e-4 1e-5 1e-6 --h 4e-4 2e-4 1e-4 5e-5 2.5e-5 1.25e-5
 
 Example (Andrews, 1e-4 in beta):
   /usr/bin/python3 scripts/adaptive_work_precision.py --exe build/alphaflex --scene inputs/andrews.yaml \
@@ -53,10 +58,12 @@ def run(exe, scene, sets, outdir, repeat):
         best_cpu = cpu if best_cpu is None else min(best_cpu, cpu)
     m = re.search(r"steps\s+(\d+)( accepted, (\d+) rejected, (\d+) Newton failures)?", p.stdout)
     newton = int(re.search(r"Newton iterations\s+total (\d+)", p.stdout).group(1))
+    factorizations = int(re.search(r"factorizations\s+(\d+) numeric", p.stdout).group(1))
     name = re.search(r"sensors\s+(\S+\.csv)", p.stdout).group(1)
     with open(name) as f:
         rows = list(csv.reader(f))
-    return dict(steps=int(m.group(1)), rejected=int(m.group(3) or 0), newton=newton, wall=best, cpu=best_cpu,
+    return dict(steps=int(m.group(1)), rejected=int(m.group(3) or 0), newton=newton, factorizations=factorizations,
+                wall=best, cpu=best_cpu,
                 header=rows[0], last=[float(x) for x in rows[-1]])
 
 def interp(xs, ys, target):
@@ -79,6 +86,9 @@ def main():
     ap.add_argument("--set", action="append", default=[]); ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--adaptive-set", action="append", default=[], help="a --set for the adaptive runs only (e.g. solver.tolerance.hold=1.2)")
     ap.add_argument("--absolute", action="store_true", help="absolute instead of relative errors")
+    ap.add_argument("--startup", action="store_true",
+                    help="also run the scene for 2 steps of 1e-7 s before each pair (tol i, h i): the process start-up's CPU, "
+                         "whose median is subtracted for the integration-only CPU")
     a = ap.parse_args()
     out = tempfile.mkdtemp(prefix="awp_")
     if a.reference_h:
@@ -99,7 +109,11 @@ def main():
     for i in range(max(len(a.tol), len(a.h))):
         order += [("tol", a.tol[i])] if i < len(a.tol) else []
         order += [("h", a.h[i])] if i < len(a.h) else []
-    for kind, v in order:
+    startup = []
+    for i, (kind, v) in enumerate(order):
+        if a.startup and (i == 0 or order[i - 1][0] == "h" or kind == "tol"):
+            st = run(a.exe, a.scene, list(a.set) + ["solver.h=1e-7", "solver.t_end=2e-7"], os.path.join(out, f"startup_{i}"), 1)
+            startup.append(st["cpu"])
         tol_sets = [f"solver.tolerance.rtol={v}", f"solver.tolerance.atol={v}"]
         sets = list(a.set) + (tol_sets + list(a.adaptive_set) if kind == "tol" else [f"solver.h={v}"])
         r = run(a.exe, a.scene, sets, os.path.join(out, f"{kind}_{v}"), a.repeat)
@@ -108,14 +122,23 @@ def main():
         r["kind"], r["value"] = kind, v
         res.append(r)
     res.sort(key=lambda r: (r["kind"] != "tol", -r["value"]))  # adaptive first, each from the largest value
-    lines = [f"| policy | tol or h | steps | rejected | Newton/step | wall (ms) | CPU (ms) | error in {a.sensor} |",
-             "|---|---|---|---|---|---|---|---|"]
+    st_cpu = sorted(startup)[len(startup) // 2] if startup else 0.0
+    for r in res:
+        r["cpu_int"] = max(r["cpu"] - st_cpu, 1e-4)
+    lines = [f"| policy | tol or h | steps | rejected | Newton/step | factorizations/step | wall (ms) | CPU (ms) |"
+             + (" CPU − start-up (ms) |" if startup else "") + f" error in {a.sensor} |",
+             "|---|---|---|---|---|---|---|---|" + ("---|" if startup else "") + "---|"]
     for r in res:
         lines.append(f"| {'adaptive' if r['kind'] == 'tol' else 'fixed'} | {r['value']:g} | {r['steps']} | {r['rejected']} | "
-                     f"{r['newton'] / max(1, r['steps'] + r['rejected']):.2f} | {1e3 * r['wall']:.1f} | {1e3 * r['cpu']:.1f} | "
-                     f"{r['error']:.3e} |")
+                     f"{r['newton'] / max(1, r['steps'] + r['rejected']):.2f} | {r['factorizations'] / max(1, r['steps']):.3f} | "
+                     f"{1e3 * r['wall']:.1f} | {1e3 * r['cpu']:.1f} | " + (f"{1e3 * r['cpu_int']:.1f} | " if startup else "")
+                     + f"{r['error']:.3e} |")
     lines += ["", f"Reference: {ref_text}; errors {'absolute' if a.absolute else 'relative'}, at t_end."
               + (f" Adaptive runs with {', '.join(a.adaptive_set)}." if a.adaptive_set else "")]
+    if startup:
+        lines.append(f"Start-up (2 steps of 1e-7 s, {len(startup)} runs interleaved with the sweep): CPU median "
+                     f"{1e3 * st_cpu:.0f} ms, from {1e3 * min(startup):.0f} to {1e3 * max(startup):.0f} ms; subtracted for "
+                     f"the integration-only CPU.")
     ad = [r for r in res if r["kind"] == "tol"]
     fx = [r for r in res if r["kind"] == "h"]
     def slope(xs, ys):
@@ -132,12 +155,15 @@ def main():
     for name, rs in (("adaptive", ad), ("fixed", fx)):
         if len(rs) >= 2:
             e = [r["error"] for r in rs]
-            at[name] = (interp(e, [r['steps'] for r in rs], a.target), interp(e, [r['cpu'] for r in rs], a.target))
+            at[name] = (interp(e, [r['steps'] for r in rs], a.target), interp(e, [r['cpu'] for r in rs], a.target),
+                        interp(e, [r['cpu_int'] for r in rs], a.target))
             lines.append(f"At error {a.target:g} ({name}, interpolated in log-log): {at[name][0]:.0f} steps, "
-                         f"{1e3 * at[name][1]:.0f} ms CPU.")
+                         f"{1e3 * at[name][1]:.0f} ms CPU" + (f", {1e3 * at[name][2]:.0f} ms without start-up" if startup else "") + ".")
     if len(at) == 2:
         lines.append(f"Fixed / adaptive at error {a.target:g}: steps {at['fixed'][0] / at['adaptive'][0]:.2f}, "
-                     f"CPU {at['fixed'][1] / at['adaptive'][1]:.2f}.")
+                     f"CPU {at['fixed'][1] / at['adaptive'][1]:.2f}"
+                     + (f", CPU without start-up {at['fixed'][2] / at['adaptive'][2]:.2f}" if startup else "") + ".")
+    lines.append(f"Load average at the end: {os.getloadavg()[0]:.1f}.")
     print("\n".join(lines))
     if a.doc:
         bm.replace_between_markers(f"<!-- {a.doc}: begin -->", f"<!-- {a.doc}: end -->", "\n".join(lines))

@@ -224,6 +224,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     if (integrator.modified_newton()) {
       sum.reused_iterations = integrator.reused_iterations();
       sum.contraction_refreshes = integrator.contraction_refreshes();
+      sum.rescaled_iterations = integrator.rescaled_iterations();
     }
     sum.mumps = solver.statistics();
     sum.workspace_retries = solver.workspace_retries();
@@ -496,9 +497,11 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   }
   os
      << "  Newton iterations   total " << s.newton_total << ", mean " << mean << " per step, max " << s.newton_max << "\n"
-     << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic\n";
+     << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic, "
+     << static_cast<double>(s.factorizations) / std::max(1, s.steps) << " per accepted step\n";
   if (s.reused_iterations >= 0)
-    os << "  modified Newton     " << s.reused_iterations << " iterations on a kept factorization, " << s.contraction_refreshes
+    os << "  modified Newton     " << s.reused_iterations << " iterations on a kept factorization (" << s.rescaled_iterations
+       << " of them made for another h), " << s.contraction_refreshes
        << " refactorizations for a contraction rate above solver.newton.max_contraction\n";
   if (s.mumps.dense)
     os << "  linear solver       dense LU with partial pivoting (one rank, " << s.unknowns << " unknowns <= -af_dense_lu "

@@ -93,7 +93,8 @@ std::string summary_json(const Scene& scene, const RunSummary& s) {
   j["newton"] = {{"total", s.newton_total}, {"mean_per_step", f.mean_newton}, {"max", s.newton_max}};
   j["factorizations"] = {{"numeric", s.factorizations}, {"symbolic", s.symbolic_analyses}};
   if (s.reused_iterations >= 0)
-    j["modified_newton"] = {{"reused_iterations", s.reused_iterations}, {"contraction_refreshes", s.contraction_refreshes}};
+    j["modified_newton"] = {{"reused_iterations", s.reused_iterations}, {"contraction_refreshes", s.contraction_refreshes},
+                            {"rescaled_iterations", s.rescaled_iterations}};
   j["linear_solver"] = {{"dense", s.mumps.dense}, {"mumps", s.mumps.mumps}};
   if (s.mumps.mumps)
     j["mumps"] = {{"factor_entries", s.mumps.entries},

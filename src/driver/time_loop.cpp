@@ -88,6 +88,9 @@ TimeLoop::TimeLoop(const Subdomain& sub, GeneralizedAlpha& integrator, StepContr
     : sub_(sub), integrator_(integrator), controller_(controller), checkpointer_(checkpointer), writer_(writer),
       settings_(std::move(settings)), estimator_(integrator.parameters().local_error_constant()) {
   integrator_.set_variable_steps(controller_.variable());
+  // Adaptive runs keep S_t across changes of h (modified Newton; docs/theory/adaptive_steps.md §6);
+  // fixed steps and the cut-back of Newton failures refactor at each, as before.
+  integrator_.set_factorization_across_h(controller_.estimates_error());
   integrator_.set_error_estimate(controller_.estimates_error());
 }
 

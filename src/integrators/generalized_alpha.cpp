@@ -235,6 +235,33 @@ StepReport GeneralizedAlpha::advance(MechanicalState& s, double h, double t_next
   return rep;
 }
 
+namespace {
+/// Whether the adaptive step's Newton tolerance on q, step_atol + step_rtol‖q‖∞, lies above the
+/// round-off floor ε S (10⁴ + 64‖q‖∞/L) of NewtonScales::measure (S = max(L, 1), the largest scale).
+/// The stale iteration converges linearly and stops when θ/(1 − θ)‖Δq‖ passes the step's Newton
+/// tolerance; where that tolerance is clipped at the round-off floor, q̇ and q̈ keep that error
+/// times γ' ~ 1/h and β' ~ 1/h² — on the hammer's blow (h ~ 1e-7 … 1e-5 s) 0.07 % of the impulse,
+/// 40× the error of tol = 1e-6 at t_end. A fresh S_t's first iteration is a full Newton step, whose
+/// error is quadratically below the floor: there S_t is refactored at a change of h, as before
+/// (docs/theory/adaptive_steps.md §6).
+bool newton_tolerance_above_roundoff(const NewtonOptions& nt, double model_size, double q_norm) {
+  if (nt.step_atol < 0.0) return true;
+  const double L = model_size;
+  const double floor = std::numeric_limits<double>::epsilon() * std::max(L, 1.0) * (1e4 + 64.0 * q_norm / L);
+  return nt.step_atol + nt.step_rtol * q_norm > floor;
+}
+}  // namespace
+
+bool GeneralizedAlpha::usable_across_h(double h) const {
+  // Only the scaled S_t (Bottasso et al.) has blocks of mass and constraints independent of h
+  // (docs/theory/adaptive_steps.md §6); unscaled, the constraint rows and the multipliers' column
+  // weigh differently at every h.
+  const NewtonOptions& nt = opt_.newton;
+  if (!across_h_ || !opt_.scaling || factored_h_ <= 0.0 || nt.h_change_rate <= 0.0) return false;
+  const double rho2 = (h / factored_h_) * (h / factored_h_);
+  return std::fabs(1.0 - rho2) / (1.0 + rho2) <= nt.h_change_rate;
+}
+
 StepReport GeneralizedAlpha::step_at(MechanicalState& s, double h, double t_next) {
   bool used_old_matrix = false;
   if (!modified_) return try_step(s, h, t_next, false, used_old_matrix);
@@ -285,8 +312,11 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
   ModelVector r;
   const NewtonOptions& nt = opt_.newton;
   bool converged = false;
-  // Modified Newton: whether the S_t factored now belongs to this h and may be used.
-  bool fresh = !(allow_reuse && factored_h_ == h);
+  // Modified Newton: whether the S_t factored now may be used — the one of this h, or (adaptive
+  // steps, scaled S_t) one of another h_f whose stale iteration still contracts fast enough.
+  // (‖q_n‖∞ over all ranks: h and factored_h_ are the same on every rank, so all reach the all-reduce.)
+  bool fresh = !(allow_reuse && (factored_h_ == h || (usable_across_h(h) &&
+                                                       newton_tolerance_above_roundoff(nt, scales_.model_size, sub.max_abs(q_n)))));
   double prev_q = 0.0, prev_l = 0.0;  // ‖Δq‖∞, ‖Δλ‖∞ of the previous iteration
   // The multipliers' own scale (docs/theory/starting_values.md §3): besides ‖λ‖∞, the change of λ
   // that goes with a change of the coordinates by rtol S_i, Δλ₁/(rtol ρ₁) from a first full iteration
@@ -300,9 +330,19 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
       used_old_matrix = true;
       ++reused_;
     }
-    const ModelVector x = reuse ? lin_.solve_with_last_factorization(n1, c, ConstraintRows::Dynamic, &r)
-                                : lin_.solve(n1, c, ConstraintRows::Dynamic, &r);
-    factored_h_ = h;
+    ModelVector x = reuse ? lin_.solve_with_last_factorization(n1, c, ConstraintRows::Dynamic, &r)
+                          : lin_.solve(n1, c, ConstraintRows::Dynamic, &r);
+    if (reuse && factored_h_ != h) {
+      // S_t of h_f, the residual of h: the correction scaled by 2/(1 + ρ²), ρ = h/h_f, the scalar
+      // that minimises the worst contraction over the spectrum of S_t(h_f)⁻¹S_t(h), which lies in
+      // [min(1, ρ²), max(1, ρ²)] (docs/theory/adaptive_steps.md §6; IDA's 2/(1 + cjratio)).
+      const double rho2 = (h / factored_h_) * (h / factored_h_);
+      const double scale = 2.0 / (1.0 + rho2);
+      x.dofs *= scale;
+      x.multipliers *= scale;
+      ++rescaled_;
+    }
+    if (!reuse) factored_h_ = h;  // a reused factorization keeps the h it was made for
     fresh = false;
     Eigen::VectorXd dq = -x.dofs;
     if (fault_injected("newton") && dq.size()) dq[0] = std::numeric_limits<double>::quiet_NaN();  // tests only

@@ -142,6 +142,9 @@ const Schema& newton_schema() {
       {"max_contraction", KeyType::Number, "–", "0.5",
        "with `modified`: contraction rate θ = ‖Δ_k‖∞/‖Δ_{k−1}‖∞ above which S_t is assembled and factored afresh",
        Range::open(0, 1), "contraction rate"},
+      {"h_change_rate", KeyType::Number, "–", "0.1",
+       "with `modified` and `solver.tolerance`: an adaptive step keeps the factorization of S_t made for an earlier step size h_f while |1 − ρ²|/(1 + ρ²) ≤ this rate (ρ = h/h_f; 0.1: ρ from 0.905 to 1.105; IDA's band is 0.25, ρ from 0.77 to 1.29), its Newton corrections scaled by 2/(1 + ρ²) (docs/theory/adaptive_steps.md §6); 0: refactor at every change of h",
+       Range::closed(0, 0.9), "contraction rate"},
   }};
   return s;
 }
@@ -291,6 +294,7 @@ void read_solver(Reader& rd, const YAML::Node& node, RunSettings& rs, std::vecto
     if (n.has("modified")) o.method = methods[n.choice("modified", 0)];
     o.modified_from = n.integer("modified_from", static_cast<int>(o.modified_from));
     o.max_contraction = n.number("max_contraction", o.max_contraction);
+    o.h_change_rate = n.number("h_change_rate", o.h_change_rate);
   }
   rs.statics.newton = rs.integrator.newton;
   if (s.has("linear")) {

@@ -56,6 +56,9 @@ struct RunSummary : CheckpointStats {
   /// Modified Newton: iterations on a factorization kept from before, refactorizations forced by a
   /// contraction rate above solver.newton.max_contraction (-1: full Newton).
   long reused_iterations = -1, contraction_refreshes = 0;
+  /// Modified Newton in adaptive runs: iterations on a factorization made for another h
+  /// (docs/theory/adaptive_steps.md §6).
+  long rescaled_iterations = 0;
   double wall = 0.0;
   double projection = 0.0;  ///< largest change of q0 by the consistent start
   PhaseTimes times;

@@ -24,7 +24,10 @@
 // no longer means a small error: the error left after Δ_k is about θ/(1−θ)‖Δ_k‖ (the estimate of
 // simplified Newton in Hairer & Wanner, Solving ODEs II, Sec. IV.8, eq. 8.13), which is what the
 // stopping rule tests instead of ‖Δ_k‖. S_t is assembled and factored afresh when θ exceeds
-// max_contraction, when h changes (β', γ' and the scaling are in S_t), after the consistent start
+// max_contraction, when h changes (β', γ' and the scaling are in S_t) — except in adaptive runs
+// (set_factorization_across_h), where the scaled S_t of an earlier h_f is kept while
+// |1 − ρ²|/(1 + ρ²) ≤ NewtonOptions::h_change_rate (ρ = h/h_f) and its corrections are scaled by
+// 2/(1 + ρ²), as IDA does (docs/theory/adaptive_steps.md §6) —, after the consistent start
 // and after a checkpoint (so that a restart repeats the run bit for bit); a step that fails with an
 // old S_t is repeated with full Newton before the failure is reported. Positions, velocities and
 // multipliers converge to the same solution of the step's equations, so the scheme's order is kept
@@ -118,6 +121,12 @@ class GeneralizedAlpha {
   void set_variable_steps(bool on) { variable_ = on; }
   /// Compute StepReport::local_error (two all-reduces per step).
   void set_error_estimate(bool on) { estimate_ = on; }
+  /// Modified Newton in adaptive runs: keep the factorization of S_t across changes of h within
+  /// NewtonOptions::h_change_rate, the corrections scaled by 2/(1 + ρ²) (docs/theory/adaptive_steps.md
+  /// §6). Off (fixed steps): every change of h refactors, so a fixed-step run stays bit for bit.
+  void set_factorization_across_h(bool on) { across_h_ = on; }
+  /// Iterations on a factorization made for another h (their corrections scaled by 2/(1 + ρ²)).
+  long rescaled_iterations() const { return rescaled_; }
   /// The next steps' Newton iteration also stops only once the coordinate correction is
   /// ≤ atol + rtol‖q‖∞ (NewtonOptions::step_atol; atol < 0: off).
   void set_step_newton_tolerance(double atol, double rtol) {
@@ -145,8 +154,8 @@ class GeneralizedAlpha {
   bool modified_ = false;    ///< modified Newton (resolved from opt_.newton at construction)
   double factored_h_ = 0.0;  ///< h of the S_t now factored (0: none usable)
   double h_aux_ = 0.0;       ///< the h a_ belongs to
-  bool variable_ = false, estimate_ = false;
-  long reused_ = 0, refreshes_ = 0;
+  bool variable_ = false, estimate_ = false, across_h_ = false;
+  long reused_ = 0, refreshes_ = 0, rescaled_ = 0;
   /// StartValues::Corrected: the start time, and the state q0, q̇0, q̈0 of the consistent start
   /// (the first step of size h from it sets a_0 = q̈_0 + Δ_α (q̈(t_0 + h) − q̈_0)).
   bool start_pending_ = false;
@@ -167,6 +176,8 @@ class GeneralizedAlpha {
   /// W = M + εI of the mass-weighted projection: ε (0 when the model has no mass at all).
   double projection_regularisation(const MechanicalState& s);
 
+  /// Whether the S_t factored for factored_h_ may serve a step of size h (across_h_ only).
+  bool usable_across_h(double h) const;
   StepReport step_at(MechanicalState& s, double h, double t_next);
   StepReport try_step(MechanicalState& s, double h, double t_next, bool allow_reuse, bool& used_old_matrix);
 };

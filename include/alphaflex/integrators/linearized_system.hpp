@@ -20,7 +20,8 @@ struct NewtonOptions {
   double atol_lambda = 1e-9;   ///< absolute, for multipliers (N, N·m)
   /// Modified Newton (scene key solver.newton.modified): keep the factorization of S_t across
   /// iterations and steps, and refactorize only when the contraction rate θ = ‖Δ_k‖/‖Δ_{k−1}‖
-  /// exceeds max_contraction, when h changes, or after a checkpoint (generalized_alpha.hpp).
+  /// exceeds max_contraction, when h changes (in adaptive runs: beyond h_change_rate), or after a
+  /// checkpoint (generalized_alpha.hpp).
   /// `automatic` (the default) chooses by the size of the system, see uses_modified.
   enum class Method { full, modified, automatic };
   Method method = Method::automatic;
@@ -36,6 +37,13 @@ struct NewtonOptions {
     return method == Method::modified || (method == Method::automatic && global_unknowns >= modified_from);
   }
   double max_contraction = 0.5;  ///< θ above which S_t is assembled and factored afresh
+  /// Adaptive steps with modified Newton: the scaled S_t factored for h_f serves a step of size h
+  /// while |1 − ρ²|/(1 + ρ²) ≤ h_change_rate, ρ = h/h_f — the contraction rate that the change of h
+  /// alone gives the stale iteration with its correction scaled by 2/(1 + ρ²). IDA's XRATE is 0.25
+  /// (ρ² in [0.6, 1/0.6]; Hindmarsh et al., ACM TOMS 31 (2005) 363–396); 0.1 (ρ from 0.905 to 1.105)
+  /// was faster on the hammer-struck beam, where Newton's rtol of 1e-9 makes every unit of rate cost
+  /// iterations (docs/theory/adaptive_steps.md §6). 0: refactor at every change of h.
+  double h_change_rate = 0.1;
   /// Adaptive steps: the coordinate correction must also be ≤ step_atol + step_rtol‖q‖∞ (not below
   /// the round-off level 10⁴ε‖q‖∞), a fraction of the step's local error tolerance, so that what
   /// Newton leaves stays out of the error estimate (docs/theory/adaptive_steps.md). < 0: off.
