@@ -1,6 +1,7 @@
 // square_plate.geo — the square [0, a]² in the x-y plane as four transfinite quarters around its
 // centre, 2n × 2n quadrilaterals (triangles with quads = 0). Units: m.
-// Physical groups: surface "plate"; curve "edges" (the whole boundary); point "centre" (a/2, a/2).
+// Physical groups: surface "plate"; curve "edges" (the whole boundary); points "centre" (a/2, a/2),
+// "corner" (0, 0) and "far_corner" (a, a).
 // Parameters: a (1 m), n (8: elements per quarter side), quads (1 or 0).
 DefineConstant[
   a = {1, Name "a"},
@@ -44,3 +45,5 @@ EndIf
 Physical Surface("plate") = {1, 2, 3, 4};
 Physical Curve("edges") = {1, 2, 5, 6, 7, 8, 11, 12};
 Physical Point("centre") = {5};
+Physical Point("corner") = {1};
+Physical Point("far_corner") = {9};

@@ -818,10 +818,13 @@ void ReissnerMindlinShell::output(const LocalState& s, Eigen::VectorXd& values) 
   mean /= area_;
   values.resize(10);
   values.head<8>() = mean;
-  const double t = section_.thickness;
+  von_mises_from_resultants(values, section_.thickness);
+}
+
+void ReissnerMindlinShell::von_mises_from_resultants(Eigen::VectorXd& values, double t) {
   for (int side = 0; side < 2; ++side) {
     const double f = side == 0 ? 6.0 / (t * t) : -6.0 / (t * t);
-    const double s11 = mean[0] / t + f * mean[3], s22 = mean[1] / t + f * mean[4], s12 = mean[2] / t + f * mean[5];
+    const double s11 = values[0] / t + f * values[3], s22 = values[1] / t + f * values[4], s12 = values[2] / t + f * values[5];
     values[8 + side] = std::sqrt(std::max(0.0, s11 * s11 + s22 * s22 - s11 * s22 + 3.0 * s12 * s12));
   }
 }

@@ -18,8 +18,8 @@ void reduced_point_pose(const Eigen::Vector3d& X, const Eigen::Matrix3d& R0, con
 }
 
 MeshReconstruction::MeshReconstruction(std::vector<Point> points, std::vector<std::shared_ptr<const Element>> elements,
-                                       std::vector<std::string> names)
-    : points_(std::move(points)), elements_(std::move(elements)), names_(std::move(names)) {
+                                       std::vector<std::string> names, Derived derived)
+    : points_(std::move(points)), elements_(std::move(elements)), names_(std::move(names)), derived_(std::move(derived)) {
   if (points_.empty()) throw std::invalid_argument("mesh reconstruction: no points");
   if (names_.empty()) names_.resize(points_.size());
   if (names_.size() != points_.size()) throw std::invalid_argument("mesh reconstruction: not one name per point");
@@ -94,6 +94,7 @@ std::vector<Eigen::VectorXd> MeshReconstruction::element_outputs(const LocalStat
     elements_[k]->output(element_state(plus, k), a);
     elements_[k]->output(element_state(minus, k), b);
     out[k] = 0.5 * (a - b);
+    if (derived_) derived_(out[k]);
   }
   return out;
 }

@@ -122,6 +122,11 @@ class ReissnerMindlinShell final : public Element {
   /// ζ = ±t/2 from σ = n/t ± 6 m/t² (plane stress; exact for a homogeneous section).
   std::vector<CellField> cell_fields() const override;
   void output(const LocalState& s, Eigen::VectorXd& values) const override;
+  /// values[8], values[9] (von Mises stress on the top and bottom faces, Pa) from the resultants
+  /// values[0 … 5] of a layer of thickness t: σ = n/t ± 6 m/t². Also used on resultants recovered
+  /// from a reduced body's modes, whose von Mises stress is not an odd function of the amplitudes
+  /// (model/mesh_reconstruction.hpp).
+  static void von_mises_from_resultants(Eigen::VectorXd& values, double t);
 
   /// Elastic energy W (J) and its exact derivatives r = ∂W/∂δ, K = ∂r/∂δ' (spatial_kernel.hpp's
   /// convention) at the configuration q (7 per node).

@@ -13,6 +13,7 @@
 // by dynamic_cast, so that Element's interface, which every file includes, stays as it is); io
 // draws it and sensors read it without knowing any element type.
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,8 +41,12 @@ class MeshReconstruction {
   /// 6 unknowns each); `names`: the named mesh points' names (empty for the others; none given:
   /// all empty). Throws std::invalid_argument if an element names a point out of range, the
   /// shapes' widths differ or the names are not one per point.
+  /// `derived`: recomputes, in place, the results that are no linear function of the others from
+  /// the recovered odd part (a shell's von Mises stresses from its resultants: the odd part of an
+  /// even function of ξ would be zero); none: all results are recovered as the odd part.
+  using Derived = std::function<void(Eigen::VectorXd& values)>;
   MeshReconstruction(std::vector<Point> points, std::vector<std::shared_ptr<const Element>> elements,
-                     std::vector<std::string> names = {});
+                     std::vector<std::string> names = {}, Derived derived = {});
 
   size_t points() const { return points_.size(); }
   const Point& point(size_t a) const { return points_[a]; }
@@ -75,6 +80,7 @@ class MeshReconstruction {
   std::vector<Point> points_;
   std::vector<std::shared_ptr<const Element>> elements_;
   std::vector<std::string> names_;
+  Derived derived_;
   int m_ = 0;
 };
 

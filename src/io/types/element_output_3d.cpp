@@ -12,7 +12,7 @@ void read_element_output(const Item& it, Sensor& sn, bool beam) {
   sn.kind = Sensor::Kind::ElementOutput;
   const std::string bn = it.keys.text(block);
   const int idx = it.keys.integer("element");
-  if (beam && read_reduced_element_output(it, sn, bn, idx)) return;  // recovered from the modes
+  if (read_reduced_element_output(it, sn, bn, idx)) return;  // recovered from the modes (a reduced beam or shell block)
   const std::string ename = bn + "[" + std::to_string(idx) + "]";
   const auto& elements = it.model.elements();
   for (size_t e = 0; e < elements.size(); ++e)

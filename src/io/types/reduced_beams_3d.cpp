@@ -1,4 +1,4 @@
-// `beams` … `reduction:` (issue 19): a spatial beam block modelled as one reduced flexible body — a
+// `beams` and `shells` … `reduction:` (issue 19): a spatial beam or shell block modelled as one reduced flexible body — a
 // floating frame (the pose of the first interface point, an ordinary Frame3D node) and elastic
 // amplitudes in a Craig–Bampton basis computed from the block's own elements with that point
 // clamped (docs/theory/reduced_bodies.md, modal/superelement.hpp). `rigid` keeps no amplitude: the
@@ -14,6 +14,7 @@
 #include "alphaflex/elements/reduced_body.hpp"
 #include "alphaflex/joints/reduced_interface_tie.hpp"
 #include "alphaflex/modal/superelement.hpp"
+#include "alphaflex/model/mesh_reconstruction.hpp"
 #include "reduced_beams_3d.hpp"
 #include "reduced_mesh_3d.hpp"
 
@@ -32,6 +33,13 @@ const Schema& reduction_schema() {
 }
 
 void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, const BeamSection& section, const Eigen::Vector3d& orient) {
+  read_reduced_block_3d(it, mesh_nodes_of(block.elements), block.name, [&](Model& model, const BlockNodeOf& node_of) {
+    return add_beam_elements(it, block, section, orient, model, node_of);
+  });
+}
+
+void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, const std::string& group,
+                           const BlockElementsOf& add_elements) {
   const YAML::Node rn = it.keys.node("reduction");
   const std::string at = it.at("reduction");
   if (!rn.IsMap()) it.rd.fail(rn, at, "expected a map {method: craig_bampton | rigid, modes: k, interface: [points]}");
@@ -43,8 +51,7 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
   if (names.empty()) it.rd.fail(rn["interface"], at + ".interface", "names no point: the first interface point carries the body's frame");
   // The interface points: named mesh points on the block.
   std::map<int, int> in_block;  // mesh node → scratch node
-  for (const auto& e : block.elements)
-    for (int m : e) in_block.emplace(m, -1);
+  for (int m : block_nodes) in_block.emplace(m, -1);
   const MeshBlocks& mb = it.sb.blocks;  // NOLINT: read only here
   std::vector<int> mesh_interface;
   for (const std::string& name : names) {
@@ -52,7 +59,7 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
     for (const auto& [m, pn] : mb.point_name)
       if (pn == name && in_block.count(m)) found = m;
     if (found < 0)
-      it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is not a named mesh point of group '" + block.name + "'");
+      it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is not a named mesh point of group '" + group + "'");
     if (std::find(mesh_interface.begin(), mesh_interface.end(), found) != mesh_interface.end())
       it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is given twice (or names the same mesh point as another entry)");
     mesh_interface.push_back(found);
@@ -63,7 +70,7 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
   std::map<int, int> interface_node;  // mesh node → run model node
   Model scratch;
   const int m0 = mesh_interface.front();
-  const std::vector<int> elements = add_beam_elements(it, block, section, orient, scratch, [&](int m, const Eigen::VectorXd& q0) {
+  const std::vector<int> elements = add_elements(scratch, [&](int m, const Eigen::VectorXd& q0) {
     int& id = in_block[m];
     if (id >= 0) return id;
     const bool on_interface = std::find(mesh_interface.begin(), mesh_interface.end(), m) != mesh_interface.end();
@@ -115,6 +122,14 @@ void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, cons
     if (it.model.find_node(c.name) >= 0) it.rd.fail(it.node, it.path, "node '" + c.name + "' exists already");
     amplitudes.push_back(it.model.add_node(c));
   }
+  // The results draw all reduced blocks as one grid of one kind (io/results_reduced.cpp: the first
+  // body's structure and fields): beams and shells reduced in one scene would lose the second kind's.
+  const char* structure = elements.empty() ? nullptr : scratch.elements()[static_cast<size_t>(elements.front())]->structure();
+  const std::string kind = structure ? structure : "";
+  for (const auto& e : it.model.elements())
+    if (const MeshReconstruction* other = reconstruction_of(*e); other && other->structure() && kind != other->structure())
+      it.rd.fail(rn, at, "block '" + it.name + "': a scene's reduced blocks are all beams or all shells (the reduced block '" + e->name() +
+                              "' is a " + other->structure() + " block; the results hold one kind of reduced mesh)");
   auto body = std::make_unique<ReducedBody>(it.name, frame, amplitudes, rb.matrices, it.sb.gravity);
   body->attach_reconstruction(reduced_block_mesh(it, scratch, elements, rb, in_block));  // the full mesh for output and sensors
   it.model.add_element(std::move(body));

@@ -3,6 +3,7 @@
 #include "reduced_mesh_3d.hpp"
 
 #include "alphaflex/elements/reduced_body.hpp"
+#include "alphaflex/elements/shell.hpp"
 
 namespace alphaflex::scene_detail {
 
@@ -25,7 +26,15 @@ std::shared_ptr<const MeshReconstruction> reduced_block_mesh(const Item& it, con
     const Element& el = *scratch.elements()[static_cast<size_t>(e)];
     cells.emplace_back(el.renumbered(el.nodes()));
   }
-  return std::make_shared<const MeshReconstruction>(std::move(points), std::move(cells), std::move(names));
+  // A shell's von Mises stresses from its recovered (odd-part) resultants (mesh_reconstruction.hpp).
+  MeshReconstruction::Derived derived;
+  if (!cells.empty()) {
+    if (const auto* shell = dynamic_cast<const ReissnerMindlinShell*>(cells.front().get())) {
+      const double t = shell->section().thickness;
+      derived = [t](Eigen::VectorXd& values) { ReissnerMindlinShell::von_mises_from_resultants(values, t); };
+    }
+  }
+  return std::make_shared<const MeshReconstruction>(std::move(points), std::move(cells), std::move(names), std::move(derived));
 }
 
 namespace {
@@ -78,8 +87,8 @@ bool read_reduced_element_output(const Item& it, Sensor& sn, const std::string& 
   const MeshReconstruction& mesh = *reconstruction_of(rb);
   const int ne = static_cast<int>(mesh.elements().size());
   if (element >= ne)
-    it.rd.fail(it.node["element"], it.at("element"), "beam '" + block + "' has no element " + std::to_string(element) + " (it has " +
-                                                         std::to_string(ne) + ", numbered from 0 along the mesh; the block is reduced)");
+    it.rd.fail(it.node["element"], it.at("element"), std::string(mesh.structure() ? mesh.structure() : "block") + " '" + block + "' has no element " + std::to_string(element) + " (it has " +
+                                                         std::to_string(ne) + ", numbered from 0 in mesh order; the block is reduced)");
   // The components of one of the block's elements (all alike): `N`, `M3`, …
   const int c = it.rd.choice(it.keys.node("component"), it.at("component"), mesh.elements().front()->output_names());
   // ReducedBody::output(): 6 per point, then each field over all elements.

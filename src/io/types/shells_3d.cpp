@@ -4,6 +4,7 @@
 
 #include "alphaflex/elements/shell.hpp"
 #include "common.hpp"
+#include "reduced_beams_3d.hpp"
 
 namespace alphaflex::scene_detail {
 namespace {
@@ -76,11 +77,13 @@ ShellSection read_shell_section(const Item& it) {
   }
 }
 
-void read_shell_block(const Item& it) {
+/// Adds the shell elements of `block` to `model` (named ITEM[e], in the group's order), their nodes
+/// given by `node_of`; returns their indices in model.elements().
+std::vector<int> add_shell_elements(const Item& it, const MeshSurfaceBlock& block, const ShellSection& section, Model& model,
+                                    const BlockNodeOf& node_of) {
   constexpr double kPi = 3.14159265358979323846;
   const Section& k = it.keys;
-  const MeshSurfaceBlock& block = mesh_block(it, it.sb.blocks.mesh.surface_blocks, "surface", "beam or shell");
-  const ShellSection section = read_shell_section(it);
+  std::vector<int> ids;
   ShellOptions options;
   options.drilling_factor = k.number("drilling", options.drilling_factor);
   options.director_interpolation = k.choice("director_interpolation", 0) == 0 ? DirectorInterpolation::linear
@@ -100,10 +103,10 @@ void read_shell_block(const Item& it) {
     for (int m : block.elements[e]) {
       Eigen::VectorXd q0(7);
       store_pose(mesh.points[static_cast<size_t>(m)], Eigen::Matrix3d::Identity(), q0.data());
-      nodes.push_back(block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6)));
+      nodes.push_back(node_of(m, q0));
     }
     std::vector<Pose<double>> ref;
-    for (int n : nodes) ref.push_back(pose_of(it.model.node(n).q0.data()));
+    for (int n : nodes) ref.push_back(pose_of(model.node(n).q0.data()));
     auto make = [&](const Eigen::Vector3d& a) {
       return std::make_unique<ReissnerMindlinShell>(it.name + "[" + std::to_string(e) + "]", nodes, section, ref, dirs[e], a,
                                                     it.sb.gravity, options);
@@ -121,7 +124,8 @@ void read_shell_block(const Item& it) {
           el = make(Eigen::Vector3d::UnitZ());
         }
       }
-      it.model.add_element(std::move(el));
+      ids.push_back(static_cast<int>(model.elements().size()));
+      model.add_element(std::move(el));
     } catch (const std::invalid_argument& ex) {
       std::ostringstream os;
       os << "element " << block.element_tags[e] << " of group '" << block.name << "': " << ex.what();
@@ -129,6 +133,19 @@ void read_shell_block(const Item& it) {
       it.rd.fail(axis_error ? k.node("material_axis") : k.node("group"), it.at(axis_error ? "material_axis" : "group"), os.str());
     }
   }
+  return ids;
+}
+
+void read_shell_block(const Item& it) {
+  const MeshSurfaceBlock& block = mesh_block(it, it.sb.blocks.mesh.surface_blocks, "surface", "beam or shell");
+  const ShellSection section = read_shell_section(it);
+  // `reduction` (issue 19): the shell block as one reduced body, the superelement from the
+  // shell mesh's own M and K at the reference (types/reduced_beams_3d.cpp).
+  if (it.keys.has("reduction"))
+    return read_reduced_block_3d(it, mesh_nodes_of(block.elements), block.name,
+                                 [&](Model& model, const BlockNodeOf& node_of) { return add_shell_elements(it, block, section, model, node_of); });
+  add_shell_elements(it, block, section, it.model,
+                     [&](int m, const Eigen::VectorXd& q0) { return block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6)); });
 }
 
 }  // namespace
@@ -143,7 +160,8 @@ void register_shells_3d(SceneTypes& t) {
       {"material_axis", KeyType::Vec3, "–", "[1, 0, 0]", "material axis 1, projected onto each element"},
       {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area (docs/theory/shell.md)", Range::positive(), "drilling stiffness factor (of G t)"},
       {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there (folds, T-junctions)", Range::positive(), "angle (degrees)"},
-      {"director_interpolation", KeyType::Choice, "–", "linear", "how the bending strains see the director's turn between nodes: `geodesic` (arc length along each edge, exact for constant curvature) or `linear` (chord: curvature 2 sin(φ/2)/L_e for a turn φ per element; docs/theory/shell.md)", {}, "", "", {"linear", "geodesic"}}}},
+      {"director_interpolation", KeyType::Choice, "–", "linear", "how the bending strains see the director's turn between nodes: `geodesic` (arc length along each edge, exact for constant curvature) or `linear` (chord: curvature 2 sin(φ/2)/L_e for a turn φ per element; docs/theory/shell.md)", {}, "", "", {"linear", "geodesic"}},
+      {"reduction", KeyType::Map, "–", "– (the full mesh)", "`beams.reduction` (the same keys; interface points: named mesh points of the surface): the block as one reduced flexible body (docs/theory/reduced_bodies.md)"}}},
       {"name, group, thickness, material", read_shell_block});
   t.parts.push_back(&material_schema());
   t.parts.push_back(&laminate_schema());
