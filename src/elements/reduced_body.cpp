@@ -64,6 +64,22 @@ V3<S> cross(const V3<S>& a, const V3<S>& b) {
 
 Eigen::MatrixXd ReducedBodyMatrices::mass_matrix(const Eigen::VectorXd& xi) const { return mass_of<double>(*this, xi); }
 
+void ReducedBodyMatrices::geometric_terms(const Eigen::VectorXd& xi, Eigen::MatrixXd& G1, Eigen::MatrixXd& G2) const {
+  const int m = elastic();
+  G1 = Eigen::MatrixXd::Zero(m, m);
+  G2 = Eigen::MatrixXd::Zero(m, m);
+  for (size_t k = 0; k < T.size(); ++k) G1 += xi[static_cast<Eigen::Index>(k)] * T[k];  // O(m³)
+  if (!Q.empty())
+    for (int k = 0; k < m; ++k)
+      for (int l = 0; l < m; ++l) G2 += (xi[k] * xi[l]) * Q[static_cast<size_t>(k * m + l)];  // O(m⁴)
+}
+
+Eigen::VectorXd ReducedBodyMatrices::elastic_force(const Eigen::VectorXd& xi) const {
+  Eigen::MatrixXd G1, G2;
+  geometric_terms(xi, G1, G2);
+  return K * xi + (0.5 * G1 + G2 / 6.0) * xi;
+}
+
 void ReducedBodyMatrices::check() const {
   const int m = elastic(), n = 6 + m;
   if (K.cols() != m || M0.rows() != n || M0.cols() != n || static_cast<int>(C.size()) != m || static_cast<int>(M2.size()) != m * m)
@@ -72,6 +88,21 @@ void ReducedBodyMatrices::check() const {
     if (c.rows() != 3 || c.cols() != n) throw std::invalid_argument("reduced body: a coupling matrix is not 3 x (6 + m)");
   if ((M0 - M0.transpose()).norm() > 1e-12 * M0.norm() || (K - K.transpose()).norm() > 1e-12 * (K.norm() + 1e-300))
     throw std::invalid_argument("reduced body: M0 and K must be symmetric");
+  if (!T.empty()) {
+    if (static_cast<int>(T.size()) != m)
+      throw std::invalid_argument("reduced body: the geometric stiffness has " + std::to_string(T.size()) + " slices for " +
+                                  std::to_string(m) + " elastic coordinates");
+    for (const Eigen::MatrixXd& t : T)
+      if (t.rows() != m || t.cols() != m || (t - t.transpose()).norm() > 1e-12 * (t.norm() + 1e-300))
+        throw std::invalid_argument("reduced body: a geometric stiffness slice is not a symmetric m x m matrix");
+  }
+  if (!Q.empty()) {
+    if (T.empty() || static_cast<int>(Q.size()) != m * m)
+      throw std::invalid_argument("reduced body: the quartic stiffness needs the cubic one and m^2 slices");
+    for (const Eigen::MatrixXd& t : Q)
+      if (t.rows() != m || t.cols() != m || (t - t.transpose()).norm() > 1e-12 * (t.norm() + 1e-300))
+        throw std::invalid_argument("reduced body: a quartic stiffness slice is not a symmetric m x m matrix");
+  }
   // M₂ᵢⱼ = DᵢᵀM̄Dⱼ, so M₂ᵢⱼᵀ = M₂ⱼᵢ: 𝕄's quadratic part is symmetric (the closed-form tangent uses it).
   double scale = 0.0, asym = 0.0;
   for (int i = 0; i < m; ++i)
@@ -132,6 +163,14 @@ Eigen::Matrix<S, Eigen::Dynamic, 1> ReducedBody::residual(const Eigen::Matrix<S,
   for (int i = 0; i < m; ++i) {
     S k = S(0.0);
     for (int j = 0; j < m; ++j) k += m_.K(i, j) * xi[j];
+    // Geometric stiffness: ∂(⅙ T[ξ,ξ,ξ])/∂ξᵢ = ½ Σⱼₖ T[k](i, j) ξⱼ ξₖ.
+    for (size_t kk = 0; kk < m_.T.size(); ++kk)
+      for (int j = 0; j < m; ++j) k += 0.5 * m_.T[kk](i, j) * xi[j] * xi[static_cast<Eigen::Index>(kk)];
+    // Quartic term: ⅙ Σⱼₖₗ Q[k·m + l](i, j) ξⱼ ξₖ ξₗ.
+    if (!m_.Q.empty())
+      for (int kk = 0; kk < m; ++kk)
+        for (int l = 0; l < m; ++l)
+          for (int j = 0; j < m; ++j) k += (1.0 / 6.0) * m_.Q[static_cast<size_t>(kk * m + l)](i, j) * xi[j] * xi[kk] * xi[l];
     r[6 + i] += hd[6 + i] + k;
   }
   return r;
@@ -187,6 +226,12 @@ void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent
   out.r.head<3>() += R * y;
   out.r.segment<3>(3) += hd.segment<3>(3) + om.cross(hw) + u.cross(hu);
   out.r.tail(m) += hd.tail(m) - 0.5 * Aw.transpose() * w + m_.K * xi;
+  // Geometric stiffness (header): force ½ T[ξ,ξ] = ½ G ξ, tangent G = T[ξ]; O(m³), only when asked.
+  MatrixXd G1, G2;
+  if (!m_.T.empty()) {
+    m_.geometric_terms(xi, G1, G2);
+    out.r.tail(m) += (0.5 * G1 + G2 / 6.0) * xi;
+  }
   if (!tangent) return;
 
   const Matrix3d om_h = hat<double>(om), u_h = hat<double>(u);
@@ -222,6 +267,7 @@ void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent
   Fx.topRows<3>() += om_h * Aw.topRows<3>();
   Fx.middleRows<3>(3) += om_h * Aw.middleRows<3>(3) + u_h * Aw.topRows<3>();
   Fx.bottomRows(m) += m_.K;
+  if (!m_.T.empty()) Fx.bottomRows(m) += G1 + 0.5 * G2;
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < m; ++j) Fx(6 + i, j) -= 0.5 * om.dot(SW.col(j).segment<3>(3 * i));
   // Chain rule to the unknowns: ∂w/∂(ẋ, ω, ξ̇) = diag(Rᵀ, I, I); u̇ = b − ω × u with
@@ -247,7 +293,13 @@ void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent
 
 double ReducedBody::elastic_energy(const Eigen::VectorXd& q) const {
   const Eigen::VectorXd xi = q.segment(7, m_.elastic());
-  return 0.5 * xi.dot(m_.K * xi);
+  double e = 0.5 * xi.dot(m_.K * xi);
+  if (!m_.T.empty()) {
+    Eigen::MatrixXd G1, G2;
+    m_.geometric_terms(xi, G1, G2);
+    e += xi.dot(G1 * xi) / 6.0 + xi.dot(G2 * xi) / 24.0;
+  }
+  return e;
 }
 
 void reduced_body_tangent_by_ad(const ReducedBody& body, const LocalState& s, LocalResidual& out) {

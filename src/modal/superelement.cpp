@@ -315,8 +315,73 @@ void ReducedBlock::node_pose(size_t a, const Eigen::Vector3d& xf, const Eigen::M
   reduced_point_pose(positions[a], rotations[a], shapes[a], xf, Rf, xi, x, R);
 }
 
+namespace {
+
+// Static "inertia modes" (modal truncation augmentation: Dickens, Nakagawa & Wittbrodt, Comput.
+// Struct. 62 (1997) 985; load-dependent Ritz vectors: Wilson, Yuan & Dickens, Earthq. Eng. Struct.
+// Dyn. 10 (1982) 813): the interior's static response K_ii⁻¹ (M g)_i to the body-frame inertia
+// loads of a floating frame — the 3 uniform accelerations and the 9 fields linear in position,
+// g(x) = eᵢ (x − x_f)ⱼ, which span the centrifugal ω × (ω × x) and angular α × x loads — with
+// the interface held. Made M-orthogonal to the kept fixed-interface modes and to each other
+// (Gram–Schmidt in M), M-unit, appended after them; those dependent on the basis (relative norm
+// below 1e-6 after the projection) are dropped. They are zero on the interface, so the
+// constraint modes stay K-orthogonal to them (Ψ is the static condensation).
+void add_inertia_modes(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& keep,
+                       const std::vector<int>& position, const SparseMatrix& Kc, const SparseMatrix& Mc, Superelement& se) {
+  const int nk = static_cast<int>(keep.size()), nb = se.interface_size();
+  std::vector<char> is_boundary(static_cast<size_t>(nk), 0);
+  for (int r : se.boundary) is_boundary[static_cast<size_t>(r)] = 1;
+  std::vector<int> interior;
+  for (int r = 0; r < nk; ++r)
+    if (!is_boundary[static_cast<size_t>(r)]) interior.push_back(r);
+  if (interior.empty()) return;
+  const Eigen::Vector3d xf = pose_of(model.node(frame_node).q0.data()).x;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nk, 12);
+  for (size_t a = 0; a < block.nodes.size(); ++a) {
+    const Eigen::Vector3d d = pose_of(model.node(block.nodes[a]).q0.data()).x - xf;
+    for (int r = 0; r < 3; ++r) {
+      const int row = position[static_cast<size_t>(block.offsets[a] + r)];
+      if (row < 0) continue;  // the frame node's rows (clamped)
+      G(row, r) = 1.0;
+      for (int j = 0; j < 3; ++j) G(row, 3 + 3 * r + j) = d[j];
+    }
+  }
+  const Eigen::MatrixXd F = Mc * G;
+  Eigen::MatrixXd Fi(static_cast<Eigen::Index>(interior.size()), 12);
+  for (size_t i = 0; i < interior.size(); ++i) Fi.row(static_cast<Eigen::Index>(i)) = F.row(interior[i]);
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(submatrix(Kc, interior, interior));
+  check_held(ldlt);
+  const Eigen::MatrixXd Si = ldlt.solve(Fi);
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(nk, 12);
+  for (size_t i = 0; i < interior.size(); ++i) S.row(interior[i]) = Si.row(static_cast<Eigen::Index>(i));
+  const Eigen::Index nm = se.T.cols() - nb;
+  std::vector<Eigen::VectorXd> added;
+  for (int c = 0; c < 12; ++c) {
+    Eigen::VectorXd s = S.col(c);
+    const double before = std::sqrt(s.dot(Mc * s));
+    if (!(before > 0.0)) continue;
+    for (int pass = 0; pass < 2; ++pass) {  // twice: Gram–Schmidt re-orthogonalized to round-off
+      if (nm > 0) s -= se.T.rightCols(nm) * (se.T.rightCols(nm).transpose() * (Mc * s));
+      for (const Eigen::VectorXd& v : added) s -= v * v.dot(Mc * s);
+    }
+    const double after = std::sqrt(s.dot(Mc * s));
+    if (after < 1e-6 * before) continue;
+    added.push_back(s / after);
+  }
+  const Eigen::Index n0 = se.T.cols();
+  se.T.conservativeResize(Eigen::NoChange, n0 + static_cast<Eigen::Index>(added.size()));
+  for (size_t k = 0; k < added.size(); ++k) se.T.col(n0 + static_cast<Eigen::Index>(k)) = added[k];
+  const Eigen::MatrixXd KT = Kc * se.T, MT = Mc * se.T;
+  se.K = se.T.transpose() * KT;
+  se.M = se.T.transpose() * MT;
+  se.K = 0.5 * (se.K + se.K.transpose()).eval();
+  se.M = 0.5 * (se.M + se.M.transpose()).eval();
+}
+
+}  // namespace
+
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
-                          int modes) {
+                          int modes, bool inertia_modes) {
   const int n = static_cast<int>(block.K.rows());
   if (block.row_of(frame_node) < 0)
     throw std::invalid_argument("the interface point '" + model.node(frame_node).name + "' is not a node of the block");
@@ -379,6 +444,7 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
   } else {
     rb.superelement = craig_bampton(Kc, Mc, boundary, modes);
   }
+  if (inertia_modes) add_inertia_modes(model, block, frame_node, keep, position, Kc, Mc, rb.superelement);
   const Superelement& se = rb.superelement;
   const int m = static_cast<int>(se.T.cols());
   // Φ on all block rows (zero on the frame node's).
@@ -428,6 +494,131 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
     for (int j = 0; j < m; ++j) d.M2.push_back(D[static_cast<size_t>(i)].transpose() * MD[static_cast<size_t>(j)]);
   d.K = se.K;
   return rb;
+}
+
+
+void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, ReducedBlock& rb,
+                         double* asymmetry) {
+  const int m = rb.matrices.elastic();
+  const size_t nn = block.nodes.size();
+  const Pose<double> F = pose_of(model.node(rb.frame_node).q0.data());
+  MechanicalState s0 = model.initial_state();
+  s0.v.setZero();
+  s0.qdd.setZero();
+  std::vector<int> conf(nn);
+  for (size_t a = 0; a < nn; ++a) conf[a] = model.confs_of({block.nodes[a]}).front();
+  // The block's size: the scale of the difference steps.
+  double size = 0.0;
+  for (const Eigen::Vector3d& X : rb.positions) size = std::max(size, X.norm());
+  if (size <= 0.0) size = 1.0;
+  // f̃(ξ) = Σₐ (R_f Φᵗₐ)ᵀ fₓ,ₐ + (T(φₐ) Φʳₐ)ᵀ f_θ,ₐ: the block's internal forces at the nodes
+  // (δx world, δθ node frame, as BlockMatrices) through the derivative of node_pose.
+  const auto projected_force = [&](const Eigen::VectorXd& xi) {
+    MechanicalState s = s0;
+    std::vector<Eigen::Vector3d> phi(nn);
+    for (size_t a = 0; a < nn; ++a) {
+      Eigen::Vector3d x;
+      Eigen::Matrix3d R;
+      rb.node_pose(a, F.x, F.R, xi, x, R);
+      phi[a] = rb.shapes[a].bottomRows<3>() * xi;
+      const Eigen::Quaterniond qa(R);
+      s.q.segment<3>(conf[a]) = x;
+      s.q[conf[a] + 3] = qa.w();
+      s.q[conf[a] + 4] = qa.x();
+      s.q[conf[a] + 5] = qa.y();
+      s.q[conf[a] + 6] = qa.z();
+    }
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(block.K.rows()));
+    LocalResidual out;
+    for (int e : element_ids) {
+      const Element& el = *model.elements()[static_cast<size_t>(e)];
+      LocalState ls = model.local_state(el, s);
+      ls.load_factor = 0.0;  // the elastic force alone: no applied load, no gravity
+      out.reset(static_cast<int>(ls.v.size()), false);
+      el.evaluate(ls, out, false);
+      int k = 0;
+      for (int node : el.nodes())
+        for (int c = 0; c < model.node(node).ndof; ++c) f[block.row_of(node, c)] += out.r[k++];
+    }
+    Eigen::VectorXd ft = Eigen::VectorXd::Zero(m);
+    for (size_t a = 0; a < nn; ++a) {
+      const int o = block.offsets[a];
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> Bx = F.R * rb.shapes[a].topRows<3>();
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> Bt = tangent_so3<double>(phi[a]) * rb.shapes[a].bottomRows<3>();
+      ft += Bx.transpose() * f.segment<3>(o) + Bt.transpose() * f.segment<3>(o + 3);
+    }
+    return ft;
+  };
+  const Eigen::VectorXd f0 = projected_force(Eigen::VectorXd::Zero(m));
+  const double kscale = rb.matrices.K.cwiseAbs().maxCoeff();
+  Eigen::VectorXd h(m);
+  for (int i = 0; i < m; ++i) {
+    double big = 0.0;
+    for (size_t a = 0; a < nn; ++a)
+      big = std::max({big, rb.shapes[a].col(i).head<3>().cwiseAbs().maxCoeff(), size * rb.shapes[a].col(i).tail<3>().cwiseAbs().maxCoeff()});
+    h[i] = 1e-3 * size / std::max(big, 1e-300);
+  }
+  if (f0.norm() > 1e-8 * kscale * h.maxCoeff())
+    throw std::invalid_argument("geometric stiffness: the block is not stress-free in its initial state");
+  // T[k](i, j) = ∂²f̃ᵢ/∂ξⱼ∂ξₖ: f̃'s even part, by central second differences (its odd part cancels).
+  std::vector<Eigen::MatrixXd> T(static_cast<size_t>(m), Eigen::MatrixXd::Zero(m, m));
+  const auto unit = [&](int i) { return Eigen::VectorXd(Eigen::VectorXd::Unit(m, i) * h[i]); };
+  for (int j = 0; j < m; ++j)
+    for (int k = j; k < m; ++k) {
+      Eigen::VectorXd d2;
+      if (j == k) {
+        d2 = (projected_force(unit(j)) - 2.0 * f0 + projected_force(-unit(j))) / (h[j] * h[j]);
+      } else {
+        const Eigen::VectorXd a = unit(j), b = unit(k);
+        d2 = (projected_force(a + b) - projected_force(a - b) - projected_force(b - a) + projected_force(-a - b)) / (4.0 * h[j] * h[k]);
+      }
+      for (int i = 0; i < m; ++i) T[static_cast<size_t>(k)](i, j) = T[static_cast<size_t>(j)](i, k) = d2[i];
+    }
+  // Full symmetry: T_ijk is a third derivative. The differences are symmetric in (j, k) by
+  // construction; (i, j) measures their error.
+  double tmax = 0.0, asym = 0.0;
+  std::vector<Eigen::MatrixXd> Ts(static_cast<size_t>(m), Eigen::MatrixXd::Zero(m, m));
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < m; ++k) {
+        const auto t = [&](int a, int b, int c) { return T[static_cast<size_t>(c)](a, b); };
+        const double sym = (t(i, j, k) + t(i, k, j) + t(j, i, k) + t(j, k, i) + t(k, i, j) + t(k, j, i)) / 6.0;
+        tmax = std::max(tmax, std::abs(t(i, j, k)));
+        asym = std::max(asym, std::abs(t(i, j, k) - sym));
+        Ts[static_cast<size_t>(k)](i, j) = sym;
+      }
+  if (asymmetry) *asymmetry = tmax > 0.0 ? asym / tmax : 0.0;
+  for (Eigen::MatrixXd& t : Ts) t = 0.5 * (t + t.transpose()).eval();
+  // Q[k·m + l](i, j) = ∂³f̃ᵢ/∂ξⱼ∂ξₖ∂ξₗ by the eight-point polarization stencil
+  // Σ s₁s₂s₃ f̃(s₁a + s₂b + s₃c) / (8 hⱼhₖhₗ): its weight is odd under a global sign change, so
+  // every even term of f̃ cancels and the error is O(h²) of the 6th derivative of U.
+  std::vector<Eigen::MatrixXd> Q(static_cast<size_t>(m * m), Eigen::MatrixXd::Zero(m, m));
+  for (int j = 0; j < m; ++j)
+    for (int k = j; k < m; ++k)
+      for (int l = k; l < m; ++l) {
+        const Eigen::VectorXd a = unit(j), b = unit(k), c = unit(l);
+        Eigen::VectorXd d3 = Eigen::VectorXd::Zero(m);
+        for (int s1 : {-1, 1})
+          for (int s2 : {-1, 1})
+            for (int s3 : {-1, 1}) d3 += double(s1 * s2 * s3) * projected_force(s1 * a + s2 * b + s3 * c);
+        d3 /= 8.0 * h[j] * h[k] * h[l];
+        const int idx[3] = {j, k, l};
+        const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+        for (const auto& p : perm)
+          for (int i = 0; i < m; ++i) Q[static_cast<size_t>(idx[p[1]] * m + idx[p[2]])](i, idx[p[0]]) = d3[i];
+      }
+  // Full symmetry over the four indices: the differences are symmetric in (j, k, l); average the
+  // four choices of the force index.
+  std::vector<Eigen::MatrixXd> Qs(static_cast<size_t>(m * m), Eigen::MatrixXd::Zero(m, m));
+  const auto q = [&](int i, int j, int k, int l) { return Q[static_cast<size_t>(k * m + l)](i, j); };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < m; ++k)
+        for (int l = 0; l < m; ++l)
+          Qs[static_cast<size_t>(k * m + l)](i, j) = 0.25 * (q(i, j, k, l) + q(j, i, k, l) + q(k, j, i, l) + q(l, j, k, i));
+  for (Eigen::MatrixXd& t : Qs) t = 0.5 * (t + t.transpose()).eval();
+  rb.matrices.T = std::move(Ts);
+  rb.matrices.Q = std::move(Qs);
 }
 
 }  // namespace alphaflex

@@ -67,8 +67,8 @@ Eigen::Vector3d random3(std::mt19937& rng, double a) {
 /// interface node (6 constraint modes) and 8 fixed-interface modes — and a moving deformed state.
 /// The invariants are random matrices of the right shapes and symmetries: the cost of the closed
 /// form depends on the sizes only.
-std::unique_ptr<ReducedBody> reduced_body(std::mt19937& rng, LocalState& s) {
-  constexpr int m = 14, n = 6 + m;
+std::unique_ptr<ReducedBody> reduced_body(std::mt19937& rng, LocalState& s, int m = 14, bool geometric = false) {
+  const int n = 6 + m;
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   auto random = [&](int r, int c) { return Eigen::MatrixXd(Eigen::MatrixXd::NullaryExpr(r, c, [&] { return u(rng); })); };
   ReducedBodyMatrices d;
@@ -83,6 +83,17 @@ std::unique_ptr<ReducedBody> reduced_body(std::mt19937& rng, LocalState& s) {
       d.M2[static_cast<size_t>(i * m + j)] = i == j ? Eigen::Matrix3d(b + b.transpose()) : b;
       d.M2[static_cast<size_t>(j * m + i)] = d.M2[static_cast<size_t>(i * m + j)].transpose();
     }
+  if (geometric) {  // fully symmetric T and Q of the right sizes: sums of tensor powers of random vectors
+    d.T.assign(static_cast<size_t>(m), Eigen::MatrixXd::Zero(m, m));
+    d.Q.assign(static_cast<size_t>(m * m), Eigen::MatrixXd::Zero(m, m));
+    for (int r = 0; r < 3; ++r) {
+      const Eigen::VectorXd a = random(m, 1);
+      for (int k = 0; k < m; ++k) {
+        d.T[static_cast<size_t>(k)] += a[k] * a * a.transpose();
+        for (int l = 0; l < m; ++l) d.Q[static_cast<size_t>(k * m + l)] += a[k] * a[l] * a * a.transpose();
+      }
+    }
+  }
   std::vector<int> coords;
   for (int i = 0; i < m; ++i) coords.push_back(1 + i);
   s.q.resize(7 + m);
@@ -168,5 +179,14 @@ int main(int argc, char** argv) {
               microseconds_per_call(*body, s, true, rounds));
   std::printf("%-12s %10s %16.2f   (m = 14; the AD reference, reduced_body_tangent_by_ad)\n", body->type(), "",
               microseconds_per_call(s, true, rounds, [&](LocalResidual& out) { reduced_body_tangent_by_ad(*body, s, out); }));
+  // Geometric stiffness (cubic and quartic energy terms, O(m⁴)): m = 8 and 16, without and with,
+  // interleaved.
+  for (int m : {8, 16})
+    for (bool geometric : {false, true}) {
+      LocalState sg;
+      const std::unique_ptr<ReducedBody> b = reduced_body(rng, sg, m, geometric);
+      std::printf("%-12s %10.2f %16.2f   (m = %d; %s geometric stiffness)\n", b->type(), microseconds_per_call(*b, sg, false, rounds),
+                  microseconds_per_call(*b, sg, true, rounds), m, geometric ? "with" : "without");
+    }
   return 0;
 }

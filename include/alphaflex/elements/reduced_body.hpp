@@ -35,11 +35,23 @@ struct ReducedBodyMatrices {
   std::vector<Eigen::MatrixXd> C;     ///< m matrices 3 × (6 + m): the ω rows of ∂𝕄/∂ξᵢ's one-sided part
   std::vector<Eigen::Matrix3d> M2;    ///< m² matrices (i·m + j): the ω–ω block of 𝕄's quadratic part
   Eigen::MatrixXd K;                  ///< m × m: K̃, the elastic stiffness in the basis
+  /// Geometric stiffness (docs/theory/reduced_bodies.md, "Geometric stiffness"): empty (a linear
+  /// elastic force K̃ξ), or m matrices m × m, T[k](i, j) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ at ξ = 0 of the block's own
+  /// nonlinear elastic energy, fully symmetric, and Q (m² matrices m × m, Q[k·m + l](i, j) =
+  /// ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ; empty: none): U = ½ ξᵀK̃ξ + ⅙ T[ξ,ξ,ξ] + ¹⁄₂₄ Q[ξ,ξ,ξ,ξ], the elastic force
+  /// K̃ξ + ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ] and its tangent K̃ + T[ξ] + ½ Q[ξ,ξ] (stress stiffening; the quartic
+  /// term keeps U bounded below when the stretch is in the basis).
+  std::vector<Eigen::MatrixXd> T, Q;
   int elastic() const { return static_cast<int>(K.rows()); }
   /// 𝕄(ξ) (6 + m)².
   Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& xi) const;
+  /// T[ξ] = Σₖ ξₖ T[k] and Q[ξ,ξ] = Σₖₗ ξₖ ξₗ Q[k·m + l] (m × m; zero without them): the elastic
+  /// force is K̃ξ + (½ G₁ + ⅙ G₂) ξ, its tangent K̃ + G₁ + ½ G₂. O(m⁴) with Q.
+  void geometric_terms(const Eigen::VectorXd& xi, Eigen::MatrixXd& G1, Eigen::MatrixXd& G2) const;
+  /// The elastic force K̃ξ + ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ].
+  Eigen::VectorXd elastic_force(const Eigen::VectorXd& xi) const;
   /// Throws std::invalid_argument unless the sizes agree, M0 and K are symmetric and M2[i·m+j] = M2[j·m+i]ᵀ
-  /// (to round-off: they are DᵢᵀM̄Dⱼ).
+  /// (to round-off: they are DᵢᵀM̄Dⱼ), and T is empty or m symmetric m × m matrices.
   void check() const;
 };
 
@@ -52,7 +64,7 @@ class ReducedBody final : public Element, public Reconstructed {
   const char* type() const override { return "reduced_body"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<ReducedBody>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
-  /// ½ ξᵀ K̃ ξ (J).
+  /// ½ ξᵀ K̃ ξ (+ ⅙ T[ξ,ξ,ξ] with geometric stiffness) (J).
   double elastic_energy(const Eigen::VectorXd& q) const override;
   const ReducedBodyMatrices& matrices() const { return m_; }
 

@@ -104,9 +104,25 @@ struct ReducedBlock {
 
 /// Reduces `block` (all its nodes Frame3D) on the frame of `frame_node` with the other interface
 /// nodes `interface_nodes` (their 6 coordinates each become constraint-mode coordinates) and
-/// `modes` fixed-interface modes. Throws std::invalid_argument (craig_bampton's messages, or a
-/// node that is not in the block).
+/// `modes` fixed-interface modes; with `inertia_modes`, the static responses to the body-frame
+/// inertia loads after them (up to 12 more coordinates: uniform and linear acceleration fields,
+/// M-orthonormalized against the modes; docs/theory/reduced_bodies.md, "Geometric stiffness").
+/// Throws std::invalid_argument (craig_bampton's messages, or a node that is not in the block).
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
-                          int modes);
+                          int modes, bool inertia_modes = false);
+
+/// The cubic and quartic terms of the block's elastic energy along the basis of `rb`
+/// (docs/theory/reduced_bodies.md, "Geometric stiffness"), stored in rb.matrices.T and .Q:
+/// T[k](i, j) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ, Q[k·m + l](i, j) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ at ξ = 0, U(ξ) the energy of the
+/// block's own (nonlinear) elements `element_ids` at the poses ReducedBlock::node_pose gives (frame
+/// at its initial pose). Computed once, by central second and third differences of the projected
+/// internal force f̃ᵢ(ξ) = ∂U/∂ξᵢ (exact: the nodes' forces times the derivative of node_pose, with
+/// the tangent operator of exp for the rotations), stencils whose even (second) or odd (third)
+/// terms cancel: error O(h²), h = 10⁻³ of the block's size in each direction's largest
+/// displacement; 2m² + 4m³/3 block evaluations. Both are made fully symmetric; `asymmetry` (if
+/// given) receives T's max |T − T_sym| / max |T| before (a check of the differences). Throws
+/// std::invalid_argument if the block is not stress-free at ξ = 0.
+void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, ReducedBlock& rb,
+                         double* asymmetry = nullptr);
 
 }  // namespace alphaflex

@@ -28,7 +28,16 @@ const Schema& reduction_schema() {
       {"modes", KeyType::Integer, "–", "– (**required** for `craig_bampton`)", "fixed-interface normal modes kept, at most the block's "
                                                                              "coordinates minus the interface's", Range::non_negative()},
       {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block; the first carries the floating frame, each other "
-                                                 "one gets a node tied to the body (joints, loads, sensors attach to all of them)"}}};
+                                                 "one gets a node tied to the body (joints, loads, sensors attach to all of them)"},
+      {"geometric_stiffness", KeyType::Flag, "–", "off", "on: the elastic force gets the cubic and quartic terms of the block's own "
+                                                        "nonlinear beam energy along the basis, ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ] (stress stiffening; "
+                                                        "docs/theory/reduced_bodies.md); "
+                                                        "off: linear K ξ"},
+      {"static_modes", KeyType::Choice, "–", "none", "`inertia`: append the static responses of the block (interface held) to the "
+                                                     "body-frame inertia loads — 3 uniform accelerations and 9 fields linear in position "
+                                                     "(centrifugal, angular) — M-orthonormalized against the modes: up to 12 more "
+                                                     "amplitudes, the axial stretch a spinning link's stiffening needs; `none`", {}, "", "",
+       {"none", "inertia"}}}};
   return s;
 }
 
@@ -48,6 +57,10 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
   if (!rigid) it.rd.need(rn, "modes", at);
   const int modes = rigid ? 0 : r.integer("modes");
   const std::vector<std::string> names = r.texts("interface");
+  const bool geometric = r.flag("geometric_stiffness", false);
+  const bool inertia_modes = r.choice("static_modes", 0) == 1;
+  if (inertia_modes && rigid) it.rd.fail(rn["static_modes"], at + ".static_modes", "needs elastic amplitudes: method rigid keeps none");
+  if (geometric && rigid) it.rd.fail(rn["geometric_stiffness"], at + ".geometric_stiffness", "needs elastic amplitudes: method rigid keeps none");
   if (names.empty()) it.rd.fail(rn["interface"], at + ".interface", "names no point: the first interface point carries the body's frame");
   // The interface points: named mesh points on the block.
   std::map<int, int> in_block;  // mesh node → scratch node
@@ -96,7 +109,8 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
   const BlockMatrices matrices = assemble_block(scratch, elements);
   ReducedBlock rb;
   try {
-    rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes);
+    rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes, inertia_modes);
+    if (geometric) nonlinear_stiffness(scratch, elements, matrices, rb);
   } catch (const std::invalid_argument& e) {
     it.rd.fail(rn, at, "block '" + it.name + "': " + e.what());
   } catch (const SolverError& e) {
