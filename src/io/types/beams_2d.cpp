@@ -19,6 +19,12 @@ const Schema& planar_section_schema() {
 }
 
 void read_beam_block_2d(const Item& it) {
+  // Reduced bodies (issue 19) are spatial: a planar scene that asks for one gets told what to do,
+  // not "unknown key" (inputs/slider_crank_flexible_3d.yaml is the planar slider-crank in 3D).
+  if (it.keys.has("reduction"))
+    it.rd.fail(it.keys.node("reduction"), it.at("reduction"),
+               "reduced bodies are spatial: a planar (dimension 2) beam block cannot be reduced; write the scene with "
+               "`dimension: 3` (3D beam sections, spatial joints about z: e.g. inputs/slider_crank_flexible_3d.yaml)");
   const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
   // Planar section: EA, GA (in-plane shear), EI (bending in the plane), rhoA, rhoI; or a material
   // and a shape whose axis 3 is z (the section's in-plane properties GA2, EI3, rhoI3).
@@ -64,7 +70,8 @@ void register_beams_2d(SceneTypes& t) {
       {"name", KeyType::Text, "–", kRequired, "elements are named NAME[0], NAME[1], … in mesh order"},
       {"group", KeyType::Text, "–", kRequired, "a physical curve group of the mesh (in the x-y plane), used by one beam only"},
       {"section", KeyType::Map, "–", kRequired, "`beams.2d.section` or `beams.section.material`"},
-      {"damping", KeyType::Number, "s", "0", "η: Kelvin–Voigt material damping, section forces C (ε + η ε̇); a bending mode of frequency ω gets ζ = ηω/2 (docs/theory/beam.md)", Range::non_negative(), "material damping (s)"}}},
+      {"damping", KeyType::Number, "s", "0", "η: Kelvin–Voigt material damping, section forces C (ε + η ε̇); a bending mode of frequency ω gets ζ = ηω/2 (docs/theory/beam.md)", Range::non_negative(), "material damping (s)"},
+      {"reduction", KeyType::Map, "–", "–", "not in 2D: reduced bodies need `dimension: 3` (an error saying so)"}}},
       {"name, group, section", read_beam_block_2d});
   t.parts.push_back(&planar_section_schema());
 }
