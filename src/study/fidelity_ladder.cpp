@@ -57,6 +57,9 @@ std::vector<std::string> rung_overrides(const ReductionLadder& ladder, const std
     YAML::Node names(YAML::NodeType::Sequence);
     for (const auto& n : ladder.interfaces[b]) names.push_back(n);
     r["interface"] = names;
+    // The rigid rung keeps no elastic amplitude: the reader refuses both keys on it.
+    if (step != "rigid" && ladder.geometric_stiffness) r["geometric_stiffness"] = "on";
+    if (step != "rigid" && ladder.static_modes != "none") r["static_modes"] = ladder.static_modes;
     YAML::Emitter out;
     out << YAML::Flow << r;
     o.push_back(ladder.block_paths[b] + ".reduction=" + out.c_str());

@@ -88,6 +88,8 @@ const Schema kReduce{"study.reduce", {
     {"blocks", KeyType::List, "–", kRequired, "the beam or shell blocks of the scene (`beams[NAME]`, `shells[NAME]`) each rung reduces: names, or maps `{name: NAME, interface: [...]}`", {}, "", "list of names or maps"},
     {"interface", KeyType::Texts, "–", "**required** unless every block gives its own", "the interface points of the blocks (named points of the mesh, joint markers) where joints attach; for every block that gives none", {}, "", "list of names"},
     {"method", KeyType::Choice, "–", "`craig_bampton`", "the reduction of the rungs with k modes (`reduction.method` of the block)", {}, "", "", {"craig_bampton", "herting"}},
+    {"geometric_stiffness", KeyType::Flag, "–", "off", "on: every reduced rung's blocks get `reduction.geometric_stiffness: on` (stress stiffening, the cubic and quartic terms of the block's own beam energy; docs/theory/reduced_bodies.md \"Geometric stiffness\"); not given to `rigid`"},
+    {"static_modes", KeyType::Choice, "–", "`none`", "`inertia`: every reduced rung's blocks get `reduction.static_modes: inertia` (up to 12 static responses to the body-frame inertia loads appended to the k modes); not given to `rigid`", {}, "", "", {"none", "inertia"}},
     {"ladder", KeyType::List, "–", "`[rigid, 2, 4, 8, 16, full]`", "the rungs, lightest first: `rigid` (each block one rigid body), a number of modes k (1 to 10000), `full` (the blocks' full nonlinear mesh, the reference; required)", {}, "", "list"}}};
 const Schema kReduceBlock{"study.reduce.blocks", {
     {"name", KeyType::Text, "–", kRequired, "a beam or shell block of the scene"},
@@ -161,6 +163,8 @@ void read_ladder(const Reader& rd, const YAML::Node& r, const YAML::Node& scene_
   const Section reduce(rd, r, "study.reduce", kReduce);
   ReductionLadder& l = spec.reduce;
   l.method = kReduce.find("method")->choices[static_cast<size_t>(reduce.choice("method"))];
+  l.geometric_stiffness = reduce.flag("geometric_stiffness", false);
+  l.static_modes = kReduce.find("static_modes")->choices[static_cast<size_t>(reduce.choice("static_modes", 0))];
   std::vector<std::string> common;
   if (reduce.has("interface")) common = reduce.texts("interface");
   const YAML::Node blocks = reduce.node("blocks");

@@ -310,6 +310,51 @@ TEST(StudyFidelityLadder, LadderExpandsIntoPatchesOfTheOneScene) {
   EXPECT_EQ(find_block(both, "x"), "");
 }
 
+TEST(StudyFidelityLadder, GeometricStiffnessAndStaticModesReachTheReducedRungsScenes) {
+  // study.reduce.geometric_stiffness and static_modes go into every reduced rung's `reduction` map
+  // (the reduced bodies' keys, io/types/reduced_beams_3d.cpp), not into the rigid rung's (its
+  // reader refuses them: no elastic amplitudes) nor the full one's (no reduction key).
+  const std::string dir = std::string(STUDY_TEST_OUTDIR);
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/ladder_geometric.yaml";
+  std::ofstream(file) << "study:\n  mode: fidelity\n  h: 1e-3\n  reduce: {blocks: [rod], interface: [A, B], "
+                         "geometric_stiffness: on, static_modes: inertia, ladder: [rigid, 8, full]}\n  tolerance: 0.01\n";
+  const StudySpec spec = read_study(src("inputs/slider_crank_flexible_3d.yaml"), file);
+  ASSERT_EQ(spec.variants.size(), 3u);
+  EXPECT_EQ(spec.variants[0].overrides, std::vector<std::string>{"beams.0.reduction={method: rigid, interface: [A, B]}"});
+  EXPECT_EQ(spec.variants[1].overrides,
+            std::vector<std::string>{"beams.0.reduction={method: craig_bampton, modes: 8, interface: [A, B], "
+                                     "geometric_stiffness: on, static_modes: inertia}"});
+  EXPECT_TRUE(spec.variants[2].overrides.empty());
+  YAML::Node scene = YAML::LoadFile(src("inputs/slider_crank_flexible_3d.yaml"));
+  input::apply_override(scene, spec.variants[1].overrides[0], "--set", "scene");
+  const YAML::Node r = scene["beams"][0]["reduction"];
+  EXPECT_EQ(scene["beams"][0]["name"].Scalar(), "rod");
+  EXPECT_EQ(r["geometric_stiffness"].Scalar(), "on");
+  EXPECT_EQ(r["static_modes"].Scalar(), "inertia");
+  EXPECT_EQ(r["modes"].as<int>(), 8);
+
+  // Defaults (off, none): the keys are not written, the rung is the scene it was before.
+  ReductionLadder plain;
+  plain.block_paths = {"beams.0"};
+  plain.interfaces = {{"A", "B"}};
+  EXPECT_EQ(rung_overrides(plain, "4"),
+            std::vector<std::string>{"beams.0.reduction={method: craig_bampton, modes: 4, interface: [A, B]}"});
+  plain.static_modes = "inertia";  // either key alone
+  EXPECT_EQ(rung_overrides(plain, "4"),
+            std::vector<std::string>{"beams.0.reduction={method: craig_bampton, modes: 4, interface: [A, B], static_modes: inertia}"});
+
+  // A bad value is refused by name.
+  std::ofstream(file) << "study:\n  mode: fidelity\n  h: 1e-3\n  reduce: {blocks: [rod], interface: [A, B], "
+                         "static_modes: modal}\n  tolerance: 0.01\n";
+  try {
+    read_study(src("inputs/slider_crank_flexible_3d.yaml"), file);
+    ADD_FAILURE() << "static_modes: modal accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("study.reduce.static_modes"), std::string::npos) << e.what();
+  }
+}
+
 TEST(StudyFidelityLadder, BadLadderInputIsRefusedByName) {
   const std::string dir = std::string(STUDY_TEST_OUTDIR);
   std::filesystem::create_directories(dir);

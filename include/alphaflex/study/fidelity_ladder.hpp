@@ -20,6 +20,11 @@ struct ReductionLadder {
   /// Interface points (named points or joint markers) of each block, in block order.
   std::vector<std::vector<std::string>> interfaces;
   std::string method = "craig_bampton";  ///< craig_bampton | herting: the reduced rungs' method
+  /// The reduced rungs' `reduction.geometric_stiffness` (stress stiffening: ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ],
+  /// docs/theory/reduced_bodies.md "Geometric stiffness"); never given to the rigid rung.
+  bool geometric_stiffness = false;
+  /// The reduced rungs' `reduction.static_modes`: "none" (not written) or "inertia".
+  std::string static_modes = "none";
   /// The rungs, lightest first: "rigid", a number of modes ("4"), "full" (the reference).
   std::vector<std::string> steps{"rigid", "2", "4", "8", "16", "full"};
 };
@@ -35,8 +40,9 @@ std::string rung_label(const std::string& step);
 
 /// The scene overrides (key.path=value, as --set takes them) that make rung `step` of the ladder:
 /// per block `PATH.reduction={method: rigid, interface: [...]}`, `{method: M, modes: k,
-/// interface: [...]}`, or nothing at all for "full" (no `reduction` key: the full mesh). This is
-/// the contract with the reduced bodies' reader (issue 19).
+/// interface: [...]}` (+ `geometric_stiffness: on`, `static_modes: inertia` when the ladder asks for
+/// them), or nothing at all for "full" (no `reduction` key: the full mesh). This is the contract
+/// with the reduced bodies' reader (issue 19, io/types/reduced_beams_3d.cpp).
 std::vector<std::string> rung_overrides(const ReductionLadder& ladder, const std::string& step);
 
 /// Error of a variant's sensor history `x` against the full model's `x_full` at the same output
