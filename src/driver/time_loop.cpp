@@ -227,13 +227,14 @@ void TimeLoop::run(MechanicalState& s, long first_step, long last_written, LoopC
     const bool estimating = ok && controller_.estimates_error();
     double local_error = 0.0;
     if (estimating && settings_.filter) {
-      // The first step has no history: its estimate is C h² (a_{n+1} − a_n), with a_n the saved a as
-      // the step moved it to its h (GeneralizedAlpha::step; none at the start of a run, h_aux = 0).
+      // The first step has no history: its estimate is C h² (a_{n+1} − a_n) (E), with a_n the a the
+      // step started from (StepReport::a_start): moved to its h by (A) and, at the start of a run,
+      // the start value a_0 of solver.start — set inside the first step, so the a saved before it
+      // is still q̈_0 from initialize(): with a corrected or smooth start that estimate was
+      // C h² (a_1 − q̈_0), off by about Δ_α h q⃛_0 (docs/theory/adaptive_steps.md, (E)).
       Eigen::VectorXd from_a;
       if (estimator_.history().count < 2) {
-        Eigen::VectorXd a_n = saved_a;
-        if (saved_h_aux > 0.0 && p.h != saved_h_aux) a_n = saved.qdd + (p.h / saved_h_aux) * (saved_a - saved.qdd);
-        from_a = std::fabs(integrator_.parameters().local_error_constant()) * p.h * p.h * (integrator_.auxiliary() - a_n);
+        from_a = std::fabs(integrator_.parameters().local_error_constant()) * p.h * p.h * (integrator_.auxiliary() - rep.a_start);
       }
       const Eigen::VectorXd e = estimator_.error_vector(rep.increment, p.h, from_a);
       local_error = sub_.max_abs(settings_.filter->apply(s, e, p.h, rep.increment, ErrorFilter::applications(controller_.t_end(), p.h),

@@ -224,13 +224,14 @@ StepReport GeneralizedAlpha::advance(MechanicalState& s, double h, double t_next
     // scaled by h/h_old it is the shift of the new step (docs/theory/adaptive_steps.md).
     a_ = s.qdd + (h / h_aux_) * (a_ - s.qdd);
   }
-  const Eigen::VectorXd a_n = estimate_ ? a_ : Eigen::VectorXd();
+  Eigen::VectorXd a_n = estimate_ ? a_ : Eigen::VectorXd();
   StepReport rep = step_at(s, h, t_next);
   h_aux_ = h;
   if (estimate_) {
     const Subdomain& sub = lin_.system().subdomain();
     rep.local_error = std::fabs(p_.local_error_constant()) * h * h * sub.max_abs(a_ - a_n);
     rep.q_norm = sub.max_abs(s.q);
+    rep.a_start = std::move(a_n);
   }
   return rep;
 }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "alphaflex/integrators/generalized_alpha.hpp"
+#include "alphaflex/partition/subdomain.hpp"
 #include "test_support.hpp"
 
 namespace alphaflex {
@@ -90,6 +92,67 @@ TEST(FilteredErrorEstimate, AStiffModeTheSchemeDampsDoesNotDriveTheStepDown) {
   EXPECT_LE(filtered.steps, 1.2 * alone.steps);
   EXPECT_LT(e_alone, 10.0 * tol);
   EXPECT_LT(e_filtered, 10.0 * tol);
+}
+
+// The first step of an adaptive run has no history and estimates with (E) of
+// docs/theory/adaptive_steps.md, e_1 = C h² (a_1 − a_0), a_0 the start value the step used. With
+// solver.start: corrected | smooth, a_0 is set inside the first step (GeneralizedAlpha::step), not by
+// initialize(): the a saved before the step is still q̈_0, and the filtered estimate of the time loop
+// took C h² (a_1 − q̈_0) (issue 17). The step now reports the a_n it started from
+// (StepReport::a_start), which the loop uses. Checks on quick_return at ρ∞ = 0.8, h = 1e-3, for each
+// start: (1) the integrator's own estimate is C h² ‖a_1 − a_start‖∞, bit for bit; (2) standard start:
+// a_start = q̈_0 bit for bit (no bias, nothing changes); (3) corrected start: a_start is the a_0 the
+// step used — a standard-start step from the same state with a = a_start gives the same a_1 and q_1
+// bit for bit — and it is not q̈_0: C h² ‖a_1 − q̈_0‖∞ differs from the estimate by more than 1 %,
+// so the test fails if the start value is not the one reported; (4) smooth start: the same
+// difference from q̈_0. Measured: C h² ‖a_1 − a_0‖∞ = 4.356e-7 (corrected), 5.260e-7 (smooth);
+// from q̈_0 3.723e-7, 3.830e-7 (ratios 0.855, 0.728); the time loop's filtered first-step estimate
+// moved from 2.868e-7 / 2.668e-7 to 3.227e-7 / 3.336e-7 with the fix.
+TEST(FilteredErrorEstimate, FirstStepEstimateTakesTheStartValue) {
+  const double h = 1e-3;
+  auto scene_with = [](const std::string& start) {
+    return read_scene(source_path("inputs/quick_return.yaml"), {"solver.rho_inf=0.8", "solver.start=" + start});
+  };
+  for (const std::string start : {"standard", "corrected", "smooth"}) {
+    Scene scene = scene_with(start);
+    const Model& m = *scene.model;
+    Subdomain sub(m, PETSC_COMM_WORLD);
+    SaddlePointSystem sys(sub);
+    LinearSolver solver(PETSC_COMM_WORLD);
+    GeneralizedAlpha ga(sys, solver, scene.settings.parameters, scene.settings.integrator);
+    ga.set_variable_steps(true);
+    ga.set_error_estimate(true);
+    MechanicalState s = m.initial_state();
+    ga.initialize(s);
+    const MechanicalState s0 = s;
+    const Eigen::VectorXd qdd0 = ga.auxiliary();  // what the time loop saves before the first step
+    const StepReport rep = ga.step(s, h);
+    const double C = std::fabs(scene.settings.parameters.local_error_constant());
+    const double e_start = C * h * h * sub.max_abs(ga.auxiliary() - rep.a_start);
+    const double e_qdd0 = C * h * h * sub.max_abs(ga.auxiliary() - qdd0);
+    std::printf("%-9s first step: C h^2 |a1 - a0|inf = %.6e, C h^2 |a1 - qdd0|inf = %.6e (ratio %.4f), |a0 - qdd0|inf = %.3e\n",
+                start.c_str(), e_start, e_qdd0, e_qdd0 / e_start, sub.max_abs(rep.a_start - qdd0));
+    EXPECT_EQ(rep.local_error, e_start) << start;
+    if (start == "standard") {
+      EXPECT_TRUE(rep.a_start.cwiseEqual(qdd0).all());
+      continue;
+    }
+    EXPECT_GT(std::fabs(e_qdd0 / e_start - 1.0), 0.01) << start;
+    if (start == "corrected") {
+      Scene plain = scene_with("standard");
+      Subdomain sub2(*plain.model, PETSC_COMM_WORLD);
+      SaddlePointSystem sys2(sub2);
+      LinearSolver solver2(PETSC_COMM_WORLD);
+      GeneralizedAlpha replay(sys2, solver2, plain.settings.parameters, plain.settings.integrator);
+      MechanicalState r = plain.model->initial_state();
+      replay.initialize(r);
+      ASSERT_TRUE(r.q.cwiseEqual(s0.q).all() && r.v.cwiseEqual(s0.v).all());
+      replay.set_auxiliary(rep.a_start, 0.0);
+      replay.step(r, h);
+      EXPECT_TRUE(replay.auxiliary().cwiseEqual(ga.auxiliary()).all());
+      EXPECT_TRUE(r.q.cwiseEqual(s.q).all());
+    }
+  }
 }
 
 // Tolerance proportionality and order 2 with the filtered estimate on the slider-crank (rigid, index 3,

@@ -77,6 +77,11 @@ struct StepReport {
   double local_error = -1.0, q_norm = -1.0;
   /// With set_error_estimate(true): the step's increment x = hΔq_n (q_{n+1} = q_n ∘ exp(x); local).
   Eigen::VectorXd increment;
+  /// With set_error_estimate(true): the auxiliary vector a_n the step started from — after the
+  /// start values of solver.start (a_0 of a corrected or smooth start is set inside the first step,
+  /// not by initialize()) and moved to this h by (A) — so that an estimate C h² (a_{n+1} − a_n)
+  /// made by the caller takes the a_n the step used (docs/theory/adaptive_steps.md, (E)).
+  Eigen::VectorXd a_start;
 };
 
 class GeneralizedAlpha {

@@ -91,7 +91,7 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
     // (a weld of two blocks) would be left unconnected, so the point must be an interface point.
     if (!on_interface && mb.node_of[static_cast<size_t>(m)] >= 0)
       it.rd.fail(rn["interface"], at + ".interface", "mesh point '" + mesh_point_label(mb, m) +
-                 "' of block '" + group + "' is shared with another block: add it to reduction.interface (a named point) so that the blocks stay connected");
+                 "' of group '" + group + "' is shared with another block: add it to reduction.interface (a named point) so that the blocks stay connected");
     Node nd;
     nd.kind = NodeKind::Frame3D;
     nd.name = std::to_string(m);
