@@ -66,6 +66,15 @@ LocalState MeshReconstruction::state(const LocalState& body) const {
   return s;
 }
 
+Eigen::Vector3d MeshReconstruction::point_position(const LocalState& body, size_t a) const {
+  const Pose<double> f = pose_of(body.q.data());
+  const Eigen::VectorXd xi = body.q.segment(7, m_);
+  const Point& p = points_.at(a);
+  const Eigen::VectorXd d = p.shape * xi;
+  const Eigen::Vector3d r = p.X + d.head<3>();
+  return f.x + f.R * r;
+}
+
 LocalState MeshReconstruction::element_state(const LocalState& points, size_t k) const {
   const Element& e = *elements_[k];
   const Eigen::Index nn = static_cast<Eigen::Index>(e.nodes().size());

@@ -554,6 +554,23 @@ TEST(MeshReconstruction, PointVelocitiesAreTheTimeDerivativesOfThePoses) {
   }
 }
 
+// A point sensor inside a reduced body reads point_position (model/sensor.cpp), not the whole
+// state(): the two must agree to the last bit, so that a sensor's value does not depend on which
+// path computed it (the sensors CSV of the slider-crank's reduced rod was bit-identical).
+TEST(MeshReconstruction, OnePointsPositionIsTheWholeMeshsToTheLastBit) {
+  std::mt19937 rng(2019);
+  const ReducedBar rb(3, 4);
+  const auto mesh = bar_mesh(rb);
+  for (int trial = 0; trial < 3; ++trial) {
+    const LocalState s = body_state(rb.rb, rng, 0.05);
+    const LocalState p = mesh->state(s);
+    for (size_t a = 0; a < mesh->points(); ++a) {
+      const Vector3d x = mesh->point_position(s, a);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(x[c], p.q[7 * static_cast<Eigen::Index>(a) + c]) << "point " << a << ", trial " << trial;
+    }
+  }
+}
+
 // Section forces recovered from the modes against statics: a cantilever (the frame node clamped)
 // with its tip as the interface point and no normal mode — the constraint modes give the exact
 // static response to a tip load (Craig & Bampton 1968) — under a small tip force P along section

@@ -63,6 +63,9 @@ class MeshReconstruction {
   /// the pose map: ẋ_a = ẋ_f + R_f (Ω_f × (X_a + Φᵗ_a ξ) + Φᵗ_a ξ̇),
   /// Ω_a = exp(−φ_a) R⁰_aᵀ Ω_f + T(φ_a) Φʳ_a ξ̇, φ_a = Φʳ_a ξ (T: core/rotation.hpp's tangent_so3).
   LocalState state(const LocalState& body) const;
+  /// Point a's position x_a alone (state()'s, to the last bit: the same expressions), for a sensor
+  /// of one point: rebuilding the whole mesh per sensor and step costs O(points) instead.
+  Eigen::Vector3d point_position(const LocalState& body, size_t a) const;
   /// Element k's local state, cut from the points' state.
   LocalState element_state(const LocalState& points, size_t k) const;
   /// Every element's results (its output(): a beam's section forces and strains) recovered from
