@@ -118,6 +118,31 @@ struct LowestModes {
   Eigen::MatrixXd vectors;      ///< M-orthonormal
 };
 
+// The rows of a block of n coordinates that are not in `boundary`, after checking `boundary`
+// (distinct, in range) and the number of normal modes asked (Craig–Bampton's at most n − n_b,
+// Herting's at most n; `kind` names them).
+std::vector<int> interior_of(int n, const std::vector<int>& boundary, int modes, const char* who, const char* kind) {
+  const bool herting_modes = std::string(kind) == "free-interface";
+  std::vector<char> is_boundary(static_cast<size_t>(n), 0);
+  for (int r : boundary) {
+    if (r < 0 || r >= n) throw std::invalid_argument(std::string(who) + ": interface coordinate " + std::to_string(r) + " is not in the block");
+    if (is_boundary[static_cast<size_t>(r)])
+      throw std::invalid_argument(std::string(who) + ": interface coordinate " + std::to_string(r) + " is given twice");
+    is_boundary[static_cast<size_t>(r)] = 1;
+  }
+  const int nb = static_cast<int>(boundary.size()), ni = herting_modes ? n : available_modes(n, nb);
+  if (modes < 0 || modes > ni) {
+    std::ostringstream os;
+    os << "asks for " << modes << " " << kind << " modes; the block has " << ni << " (" << n << " coordinates, " << nb
+       << " on the interface)";
+    throw std::invalid_argument(os.str());
+  }
+  std::vector<int> interior;
+  for (int r = 0; r < n; ++r)
+    if (!is_boundary[static_cast<size_t>(r)]) interior.push_back(r);
+  return interior;
+}
+
 LowestModes dense_modes(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int k, const char* not_definite) {
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
   if (es.info() != Eigen::Success) throw std::invalid_argument(not_definite);
@@ -221,22 +246,8 @@ Superelement craig_bampton(const SparseMatrix& K, const SparseMatrix& M, const s
   if (boundary.empty())
     throw std::invalid_argument("the block has no interface coordinates: a reduced block needs interface points "
                                 "(where joints or supports attach) to define its constraint modes");
-  std::vector<char> is_boundary(static_cast<size_t>(n), 0);
-  for (int r : boundary) {
-    if (r < 0 || r >= n) throw std::invalid_argument("craig_bampton: interface coordinate " + std::to_string(r) + " is not in the block");
-    if (is_boundary[static_cast<size_t>(r)]) throw std::invalid_argument("craig_bampton: interface coordinate " + std::to_string(r) + " is given twice");
-    is_boundary[static_cast<size_t>(r)] = 1;
-  }
+  const std::vector<int> interior = interior_of(n, boundary, modes, "craig_bampton", "fixed-interface");
   const int nb = static_cast<int>(boundary.size()), ni = available_modes(n, nb);
-  if (modes < 0 || modes > ni) {
-    std::ostringstream os;
-    os << "asks for " << modes << " fixed-interface modes; the block has " << ni << " (" << n
-       << " coordinates, " << nb << " on the interface)";
-    throw std::invalid_argument(os.str());
-  }
-  std::vector<int> interior;
-  for (int r = 0; r < n; ++r)
-    if (!is_boundary[static_cast<size_t>(r)]) interior.push_back(r);
   Superelement se;
   se.boundary = boundary;
   se.T = Eigen::MatrixXd::Zero(n, nb + modes);
@@ -275,6 +286,132 @@ Superelement craig_bampton(const SparseMatrix& K, const SparseMatrix& M, const s
   se.K = se.T.transpose() * KT;
   se.M = se.T.transpose() * MT;
   // Symmetric to round-off by construction; make it exact so downstream factorizations see it.
+  se.K = 0.5 * (se.K + se.K.transpose()).eval();
+  se.M = 0.5 * (se.M + se.M.transpose()).eval();
+  return se;
+}
+
+Superelement herting(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const std::vector<int>& boundary, int modes) {
+  if (K.rows() != K.cols() || M.rows() != K.rows() || M.cols() != K.rows())
+    throw std::invalid_argument("herting: K and M must be square and of one size");
+  return herting(SparseMatrix(K.sparseView(0.0, 0.0)), SparseMatrix(M.sparseView(0.0, 0.0)), boundary, modes);
+}
+
+// Herting's basis in Sonneville et al.'s (2021) form (header; docs/theory/reduced_bodies.md):
+// a free-interface mode v solves K_ii v_i + K_ib v_b = ω² (M v)_i, so v_i = Ψ v_b + ω² K_ii⁻¹ (M v)_i
+// and the column v − [0; Ψ v_b] = [0; ω² K_ii⁻¹ (M v)_i] is Sonneville's Ψ_D column scaled by −ω²:
+// the mode is exactly T [v_b; e_j]. The span is Herting's {constraint modes, free-interface modes}
+// (the residual-flexibility attachment modes of the supported block lie in the span of the
+// constraint modes, whose interface rows are the identity), and u_b stays a coordinate.
+Superelement herting(const SparseMatrix& K, const SparseMatrix& M, const std::vector<int>& boundary, int modes, ModeSolver solver) {
+  const int n = static_cast<int>(K.rows());
+  if (K.cols() != n || M.rows() != n || M.cols() != n) throw std::invalid_argument("herting: K and M must be square and of one size");
+  const std::vector<int> interior = interior_of(n, boundary, modes, "herting", "free-interface");
+  const int nb = static_cast<int>(boundary.size()), ni = static_cast<int>(interior.size());
+  const bool dense = solver == ModeSolver::dense || (solver == ModeSolver::automatic && (n <= 300 || 4 * modes > n));
+  const char* not_definite = "the block's mass matrix is not positive definite";
+  Superelement se;
+  se.boundary = boundary;
+  se.T = Eigen::MatrixXd::Zero(n, nb + modes);
+  for (int c = 0; c < nb; ++c) se.T(boundary[static_cast<size_t>(c)], c) = 1.0;
+  // The interior must be held (by the interface, or by a support when there is no interface).
+  const auto held = [&](auto&& check) {
+    try {
+      check();
+    } catch (const std::invalid_argument&) {
+      if (nb > 0) throw;
+      throw std::invalid_argument("the block has no interface coordinates and no support: it moves without strain; "
+                                  "a reduced block needs interface points (where joints or supports attach) or a support");
+    }
+  };
+  Eigen::MatrixXd Psi = Eigen::MatrixXd::Zero(ni, nb);
+  LowestModes lm;
+  lm.vectors = Eigen::MatrixXd::Zero(n, 0);
+  if (ni > 0) {
+    const SparseMatrix Kii = submatrix(K, interior, interior);
+    const Eigen::MatrixXd Kib = Eigen::MatrixXd(submatrix(K, interior, boundary));
+    // Static constraint modes Ψ = −K_ii⁻¹ K_ib (as Craig–Bampton).
+    if (dense) {
+      const Eigen::MatrixXd Kd(Kii);
+      held([&] { Psi = -check_held(Kd).solve(Kib); });
+    } else {
+      const Eigen::SimplicialLDLT<SparseMatrix> ldlt(Kii);
+      held([&] { check_held(ldlt); });
+      Psi = -ldlt.solve(Kib);
+    }
+  }
+  if (modes > 0) {
+    // Free-interface modes of the whole block, the rigid-body ones (a free block) skipped: they are
+    // in the span of the constraint modes (the interface holds the block) and their column would
+    // vanish. Round-off puts them at |ω²| ~ ε ω²_max; the threshold 1e-12 ω²_max leaves elastic
+    // modes alone up to a spread ω²_max/ω²_1 of 1e12 (beam blocks here: 1e6–1e9).
+    if (dense) {
+      const Eigen::MatrixXd Kd(K), Md(M);
+      const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kd, Md, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+      if (es.info() != Eigen::Success) throw std::invalid_argument(not_definite);
+      const Eigen::VectorXd& lam = es.eigenvalues();
+      int rigid = 0;
+      while (rigid < n && lam[rigid] < 1e-12 * lam[n - 1]) ++rigid;
+      if (rigid + modes > n) {
+        std::ostringstream os;
+        os << "asks for " << modes << " free-interface modes; the block has " << n - rigid << " elastic ones (" << n
+           << " coordinates, " << rigid << " rigid-body modes)";
+        throw std::invalid_argument(os.str());
+      }
+      lm.eigenvalues = lam.segment(rigid, modes);
+      lm.vectors = es.eigenvectors().middleCols(rigid, modes);
+    } else {
+      // Shift-and-invert at 0 factors K: a supported block only.
+      const Eigen::SimplicialLDLT<SparseMatrix> ldlt(K);
+      const Eigen::VectorXd& D = ldlt.vectorD();
+      if (ldlt.info() != Eigen::Success || !(D.minCoeff() > 1e-14 * D.maxCoeff())) {
+        std::ostringstream os;
+        os << "herting: the block (" << n << " coordinates) is free (it has rigid-body modes) and too large for the dense "
+           << "eigensolver (at most 300 coordinates, or more than a quarter of its modes asked); support it (clamp its frame "
+           << "point) or use craig_bampton";
+        throw std::invalid_argument(os.str());
+      }
+      lm = sparse_modes(K, M, modes);
+    }
+    fix_signs(lm.vectors);
+    // Column j: v_j less its constraint-mode part, w_j = v_j − [0; Ψ v_b,j], zero on the interface.
+    Eigen::MatrixXd Vb(nb, modes);
+    for (int c = 0; c < nb; ++c) Vb.row(c) = lm.vectors.row(boundary[static_cast<size_t>(c)]);
+    const Eigen::MatrixXd PsiVb = Psi * Vb;
+    Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n, modes);
+    for (size_t i = 0; i < interior.size(); ++i)
+      W.row(interior[i]) = lm.vectors.row(interior[i]) - PsiVb.row(static_cast<Eigen::Index>(i));
+    // The w_j live in the n − n_b interior coordinates, and a combination of kept modes that is a
+    // static interface shape gives a dependent one (Herting's residual flexibility of the dropped
+    // modes singular: a straight beam's dropped top modes miss whole families at the interface).
+    // Gram–Schmidt in M, in frequency order, twice (re-orthogonalized to round-off): a column whose
+    // M-norm falls below 1e-6 of its own is (to a frequency error ~1e-12) a combination of the lower
+    // ones and gets no amplitude. The kept columns are M-orthonormal, the span of the first j is
+    // that of w_1 … w_j, so every kept mode stays exact; with all n modes, n − n_b remain (complete).
+    std::vector<Eigen::VectorXd> kept;
+    std::vector<int> kept_mode;
+    for (int j = 0; j < modes; ++j) {
+      Eigen::VectorXd w = W.col(j);
+      const double before = std::sqrt(w.dot(M * w));
+      for (int pass = 0; pass < 2; ++pass)
+        for (const Eigen::VectorXd& u : kept) w -= u * u.dot(M * w);
+      const double after = std::sqrt(w.dot(M * w));
+      if (!(after > 1e-6 * before)) continue;
+      kept.push_back(w / after);
+      kept_mode.push_back(j);
+    }
+    const int k = static_cast<int>(kept.size());
+    se.T.conservativeResize(Eigen::NoChange, nb + k);
+    se.frequencies.resize(k);
+    for (int c = 0; c < k; ++c) {
+      se.T.col(nb + c) = kept[static_cast<size_t>(c)];
+      se.frequencies[c] = std::sqrt(std::max(lm.eigenvalues[kept_mode[static_cast<size_t>(c)]], 0.0)) / (2.0 * M_PI);
+    }
+  }
+  for (size_t i = 0; i < interior.size(); ++i) se.T.row(interior[i]).head(nb) = Psi.row(static_cast<Eigen::Index>(i));
+  const Eigen::MatrixXd KT = K * se.T, MT = M * se.T;
+  se.K = se.T.transpose() * KT;
+  se.M = se.T.transpose() * MT;
   se.K = 0.5 * (se.K + se.K.transpose()).eval();
   se.M = 0.5 * (se.M + se.M.transpose()).eval();
   return se;
@@ -323,7 +460,8 @@ namespace {
 // Dyn. 10 (1982) 813): the interior's static response K_ii⁻¹ (M g)_i to the body-frame inertia
 // loads of a floating frame — the 3 uniform accelerations and the 9 fields linear in position,
 // g(x) = eᵢ (x − x_f)ⱼ, which span the centrifugal ω × (ω × x) and angular α × x loads — with
-// the interface held. Made M-orthogonal to the kept fixed-interface modes and to each other
+// the interface held. Made M-orthogonal to the kept fixed-interface modes (or Herting's columns,
+// M-orthonormal as well) and to each other
 // (Gram–Schmidt in M), M-unit, appended after them; those dependent on the basis (relative norm
 // below 1e-6 after the projection) are dropped. They are zero on the interface, so the
 // constraint modes stay K-orthogonal to them (Ψ is the static condensation).
@@ -382,7 +520,7 @@ void add_inertia_modes(const Model& model, const BlockMatrices& block, int frame
 }  // namespace
 
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
-                          int modes, bool inertia_modes) {
+                          int modes, bool inertia_modes, Reduction method) {
   const int n = static_cast<int>(block.K.rows());
   if (block.row_of(frame_node) < 0)
     throw std::invalid_argument("the interface point '" + model.node(frame_node).name + "' is not a node of the block");
@@ -411,11 +549,14 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
   ReducedBlock rb;
   rb.frame_node = frame_node;
   // A block held only by its frame node has no constraint modes; Craig–Bampton with the frame
-  // clamped then needs no interface coordinates (the clamp is the interface).
+  // clamped then needs no interface coordinates (the clamp is the interface), and Herting's
+  // free-interface modes are the same modes (no interface coordinate is left free).
+  const bool herting_basis = method == Reduction::herting;
   if (boundary.empty()) {
     if (modes < 0 || modes > nk) {
       std::ostringstream os;
-      os << "asks for " << modes << " fixed-interface modes; the block has " << nk << " (" << n << " coordinates, 6 on the interface)";
+      os << "asks for " << modes << (herting_basis ? " free-interface" : " fixed-interface") << " modes; the block has " << nk << " ("
+         << n << " coordinates, 6 on the interface)";
       throw std::invalid_argument(os.str());
     }
     Superelement& se = rb.superelement;
@@ -443,7 +584,7 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
     se.K = 0.5 * (se.K + se.K.transpose()).eval();
     se.M = 0.5 * (se.M + se.M.transpose()).eval();
   } else {
-    rb.superelement = craig_bampton(Kc, Mc, boundary, modes);
+    rb.superelement = herting_basis ? herting(Kc, Mc, boundary, modes) : craig_bampton(Kc, Mc, boundary, modes);
   }
   if (inertia_modes) add_inertia_modes(model, block, frame_node, keep, position, Kc, Mc, rb.superelement);
   const Superelement& se = rb.superelement;

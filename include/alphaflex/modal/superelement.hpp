@@ -38,14 +38,17 @@ struct BlockMatrices {
 /// Throws std::invalid_argument if the list is empty.
 BlockMatrices assemble_block(const Model& model, const std::vector<int>& element_ids);
 
-/// A Craig–Bampton superelement: full coordinates u = T ξ with ξ = [u_b; η], u_b the interface
-/// (boundary) coordinates in the order given, η the amplitudes of the fixed-interface modes
-/// (M-orthonormal, ascending frequency).
+/// A superelement: full coordinates u = T ξ with ξ = [u_b; η], u_b the interface (boundary)
+/// coordinates in the order given (T's rows there are [I, 0]), η the amplitudes of the kept normal
+/// modes, ascending frequency: Craig–Bampton's fixed-interface modes (M-orthonormal, K̃ diagonal
+/// on them), or Herting's free-interface modes less their constraint-mode part, M-orthonormalized
+/// (K̃'s modal block full, not diagonal). Either way the constraint modes are K-orthogonal to the
+/// normal-mode columns (those vanish on the interface) and M-coupled to them.
 struct Superelement {
   std::vector<int> boundary;     ///< rows of the full matrices that are interface coordinates
   Eigen::MatrixXd T;             ///< n × (n_b + k): constraint modes, then normal modes
   Eigen::MatrixXd K, M;          ///< Tᵀ K T, Tᵀ M T (symmetric)
-  Eigen::VectorXd frequencies;   ///< Hz: the kept fixed-interface modes
+  Eigen::VectorXd frequencies;   ///< Hz: the kept fixed-interface (Craig–Bampton) or free-interface (Herting) modes
   int interface_size() const { return static_cast<int>(boundary.size()); }
   int modes() const { return static_cast<int>(frequencies.size()); }
 };
@@ -71,6 +74,29 @@ enum class ModeSolver { automatic, dense, sparse };
 Superelement craig_bampton(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
                            const std::vector<int>& boundary, int modes, ModeSolver solver = ModeSolver::automatic);
 
+/// Herting's free-interface reduction (Herting, Finite Elem. Anal. Des. 1 (1985) 153; in the form of
+/// Sonneville, Scapolan, Shan & Bauchau, Multibody Syst. Dyn. 51 (2021) 377, §4.3; docs/theory/
+/// reduced_bodies.md, "Herting's free-interface basis"): T = [[I, 0], [Ψ, V_i − Ψ V_b]] with Ψ the
+/// static constraint modes (as craig_bampton) and V the `modes` lowest elastic normal modes of the
+/// whole block (K v = ω² M v, interface free), so every kept free-interface mode is in the basis
+/// (its first j columns span the first j modes less their constraint-mode parts, M-orthonormalized
+/// in frequency order; a column that adds nothing to the span — below 1e-6 of its M-norm — gets no
+/// amplitude, so `modes` may be up to n and the basis is then complete) and the interface
+/// coordinates stay generalized coordinates. A free
+/// block's rigid-body modes (ω² below 1e-12 of the largest on the dense path) are not counted:
+/// the constraint modes hold them. `boundary` may be empty for a supported block (K positive
+/// definite): then T is the modes. The same errors as craig_bampton ("free-interface modes"), and
+/// an empty `boundary` on a free block ("no interface and no support"); the sparse path (LDLᵀ +
+/// SLEPc shift-and-invert at 0) needs a supported block, a free block above its size is refused.
+Superelement herting(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const std::vector<int>& boundary, int modes);
+/// herting on sparse K, M; `automatic` takes the dense path for a block of at most 300 coordinates
+/// or when more than a quarter of its modes are asked.
+Superelement herting(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M, const std::vector<int>& boundary,
+                     int modes, ModeSolver solver = ModeSolver::automatic);
+
+/// The component modes a reduced block keeps (`reduction.method`).
+enum class Reduction { craig_bampton, herting };
+
 /// Rigid-body mass properties of a block: its kinetic energy under rigid motions of all its nodes,
 /// Gᵀ M G with G the 6 rigid modes (translation, rotation about the world origin).
 struct RigidMassProperties {
@@ -84,8 +110,9 @@ struct RigidMassProperties {
 RigidMassProperties rigid_mass_properties(const Model& model, const BlockMatrices& block);
 
 /// A block reduced on a floating frame (docs/theory/reduced_bodies.md): the frame is the pose of
-/// the reference interface node, the basis the Craig–Bampton modes of the block with that node
-/// clamped (constraint modes of the other interface nodes, then `modes` fixed-interface modes).
+/// the reference interface node, the basis the Craig–Bampton (or Herting) modes of the block with
+/// that node clamped (constraint modes of the other interface nodes, then `modes` fixed-interface
+/// (free-interface) modes).
 struct ReducedBlock {
   int frame_node = -1;                 ///< model node id of the reference interface node
   Superelement superelement;           ///< on the block's coordinates without the frame node's
@@ -106,10 +133,12 @@ struct ReducedBlock {
 /// nodes `interface_nodes` (their 6 coordinates each become constraint-mode coordinates) and
 /// `modes` fixed-interface modes; with `inertia_modes`, the static responses to the body-frame
 /// inertia loads after them (up to 12 more coordinates: uniform and linear acceleration fields,
-/// M-orthonormalized against the modes; docs/theory/reduced_bodies.md, "Geometric stiffness").
-/// Throws std::invalid_argument (craig_bampton's messages, or a node that is not in the block).
+/// M-orthonormalized against the modes; docs/theory/reduced_bodies.md, "Geometric stiffness");
+/// `method`: craig_bampton or herting (free-interface modes of the block with the frame node
+/// clamped, the other interface nodes free; with no other interface node the two coincide).
+/// Throws std::invalid_argument (craig_bampton's or herting's messages, or a node that is not in the block).
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
-                          int modes, bool inertia_modes = false);
+                          int modes, bool inertia_modes = false, Reduction method = Reduction::craig_bampton);
 
 /// The cubic and quartic terms of the block's elastic energy along the basis of `rb`
 /// (docs/theory/reduced_bodies.md, "Geometric stiffness"), stored in rb.matrices.T and .Q:

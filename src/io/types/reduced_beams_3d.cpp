@@ -1,6 +1,6 @@
 // `beams` and `shells` … `reduction:` (issue 19): a spatial beam or shell block modelled as one reduced flexible body — a
 // floating frame (the pose of the first interface point, an ordinary Frame3D node) and elastic
-// amplitudes in a Craig–Bampton basis computed from the block's own elements with that point
+// amplitudes in a Craig–Bampton (or Herting) basis computed from the block's own elements with that point
 // clamped (docs/theory/reduced_bodies.md, modal/superelement.hpp). `rigid` keeps no amplitude: the
 // block's rigid mass properties on the frame. Every other interface point is a Frame3D node tied
 // to the body's pose there (joints/reduced_interface_tie.hpp), so joints, loads and sensors attach
@@ -21,11 +21,15 @@
 namespace alphaflex::scene_detail {
 
 const Schema& reduction_schema() {
-  // Herting's free-interface basis is not built: the schema names the methods that are.
   static const Schema s{"beams.reduction", {
       {"method", KeyType::Choice, "–", kRequired, "`craig_bampton`: constraint modes of the other interface points and `modes` "
-                                                  "fixed-interface normal modes; `rigid`: no elastic amplitude", {}, "", "", {"craig_bampton", "rigid"}},
-      {"modes", KeyType::Integer, "–", "– (**required** for `craig_bampton`)", "fixed-interface normal modes kept, at most the block's "
+                                                  "fixed-interface normal modes (all interface points clamped; exact for the lowest "
+                                                  "frequencies of the block held at its interface); `herting`: the same constraint modes "
+                                                  "and `modes` free-interface normal modes (only the first point clamped, the others free; "
+                                                  "exact for the lowest frequencies of the block free at its other interface points), "
+                                                  "the interface points staying coordinates (docs/theory/reduced_bodies.md); `rigid`: no "
+                                                  "elastic amplitude", {}, "", "", {"craig_bampton", "rigid", "herting"}},
+      {"modes", KeyType::Integer, "–", "– (**required** for `craig_bampton` and `herting`)", "normal modes kept, at most the block's "
                                                                              "coordinates minus the interface's", Range::non_negative()},
       {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block; the first carries the floating frame, each other "
                                                  "one gets a node tied to the body (joints, loads, sensors attach to all of them)"},
@@ -51,9 +55,11 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
                            const BlockElementsOf& add_elements) {
   const YAML::Node rn = it.keys.node("reduction");
   const std::string at = it.at("reduction");
-  if (!rn.IsMap()) it.rd.fail(rn, at, "expected a map {method: craig_bampton | rigid, modes: k, interface: [points]}");
+  if (!rn.IsMap()) it.rd.fail(rn, at, "expected a map {method: craig_bampton | herting | rigid, modes: k, interface: [points]}");
   const Section r(it.rd, rn, at, reduction_schema());
-  const bool rigid = r.choice("method") == 1;
+  const int method = r.choice("method");
+  const bool rigid = method == 1;
+  const Reduction basis = method == 2 ? Reduction::herting : Reduction::craig_bampton;
   if (!rigid) it.rd.need(rn, "modes", at);
   const int modes = rigid ? 0 : r.integer("modes");
   const std::vector<std::string> names = r.texts("interface");
@@ -109,7 +115,7 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
   const BlockMatrices matrices = assemble_block(scratch, elements);
   ReducedBlock rb;
   try {
-    rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes, inertia_modes);
+    rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes, inertia_modes, basis);
     if (geometric) nonlinear_stiffness(scratch, elements, matrices, rb);
   } catch (const std::invalid_argument& e) {
     it.rd.fail(rn, at, "block '" + it.name + "': " + e.what());
