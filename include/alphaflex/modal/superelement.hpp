@@ -75,7 +75,7 @@ Superelement craig_bampton(const Eigen::SparseMatrix<double>& K, const Eigen::Sp
                            const std::vector<int>& boundary, int modes, ModeSolver solver = ModeSolver::automatic);
 
 /// Herting's free-interface reduction (Herting, Finite Elem. Anal. Des. 1 (1985) 153; in the form of
-/// Sonneville, Scapolan, Shan & Bauchau, Multibody Syst. Dyn. 51 (2021) 377, §4.3; docs/theory/
+/// Sonneville, Scapolan, Shan & Bauchau, Multibody Syst. Dyn. 51 (2021) 377; docs/theory/
 /// reduced_bodies.md, "Herting's free-interface basis"): T = [[I, 0], [Ψ, V_i − Ψ V_b]] with Ψ the
 /// static constraint modes (as craig_bampton) and V the `modes` lowest elastic normal modes of the
 /// whole block (K v = ω² M v, interface free), so every kept free-interface mode is in the basis

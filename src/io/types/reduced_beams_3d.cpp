@@ -29,8 +29,10 @@ const Schema& reduction_schema() {
                                                   "exact for the lowest frequencies of the block free at its other interface points), "
                                                   "the interface points staying coordinates (docs/theory/reduced_bodies.md); `rigid`: no "
                                                   "elastic amplitude", {}, "", "", {"craig_bampton", "rigid", "herting"}},
-      {"modes", KeyType::Integer, "–", "– (**required** for `craig_bampton` and `herting`)", "normal modes kept, at most the block's "
-                                                                             "coordinates minus the interface's", Range::non_negative()},
+      {"modes", KeyType::Integer, "–", "– (**required** for `craig_bampton` and `herting`)", "normal modes kept: `craig_bampton` at most "
+                                                                             "the block's coordinates minus the interface's; `herting` at most the "
+                                                                             "block's coordinates less the first point's 6 (a mode that adds nothing "
+                                                                             "to the basis gets no amplitude)", Range::non_negative()},
       {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block; the first carries the floating frame, each other "
                                                  "one gets a node tied to the body (joints, loads, sensors attach to all of them)"},
       {"geometric_stiffness", KeyType::Flag, "–", "off", "on: the elastic force gets the cubic and quartic terms of the block's own "
