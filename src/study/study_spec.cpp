@@ -56,7 +56,7 @@ const Schema kStudy{"study", {
     {"reference_variant", KeyType::Text, "–", "the last variant", "`fidelity` with `variants`: the label of the variant the others are compared with"},
     {"reduce", KeyType::Map, "–", "none", "`fidelity`: the ladder rigid → reduced → full mesh of blocks of the scene, built from the one scene (`study.reduce`); not with `variants`"},
     {"load", KeyType::Map, "–", "none", "`fidelity` with `reduce`: the load axis (`study.load`): the whole ladder runs once per load scale, errors against that scale's `full` rung, and the study prints where the lightest acceptable rung changes"},
-    {"tolerance", KeyType::Number, "–", "none (**required** with `reduce`)", "`fidelity`: the largest acceptable error of a variant (max over the sensors of max over the output times of |variant − reference| / the sensor's range in the reference run); the study recommends the variant of least CPU time within it", Range::positive(), "tolerance"},
+    {"tolerance", KeyType::Number, "–", "none (**required** with `reduce`)", "`fidelity`: the largest acceptable error of a variant (max over the sensors of max over the output times of |variant − reference| / the sensor's range in the reference run, or as `errors` says); the study recommends the variant of least CPU time within it", Range::positive(), "tolerance"},
     {"plots", KeyType::Flag, "–", "on", "call the plotting script after writing the CSVs"},
     {"python", KeyType::Text, "–", "`/usr/bin/python3`", "interpreter for the plotting script and the Radau peer"},
     {"plot_script", KeyType::Text, "–", "`scripts/study_plots.py` of the source tree", "relative to the study file"}}};
