@@ -6,7 +6,7 @@ smallest scale, and that another run of the same study (e.g. under mpirun -np 2)
 and the same change points.
 
     check_load_ladder.py CSV [--change 'FROM:TO:S1:S2'] [--rung LABEL] [--below S] [--slope LO:HI]
-                         [--coefficient C:LO:HI] [--same-as OTHER.csv] [-- COMMAND ...]
+                         [--coefficient C:LO:HI] [--same-as OTHER.csv] [--png FILE ...] [-- COMMAND ...]
 
 COMMAND (if given) runs first and must exit 0 (it writes CSV). --change: the only change point is
 from rung FROM to rung TO between load scales S1 and S2. --slope: the least-squares slope of
@@ -45,6 +45,7 @@ p.add_argument("--below", type=float, default=math.inf)
 p.add_argument("--slope")
 p.add_argument("--coefficient")
 p.add_argument("--same-as")
+p.add_argument("--png", action="append", default=[], help="a chart that must exist and be non-empty")
 a = p.parse_args(argv)
 
 if command:
@@ -102,4 +103,7 @@ if a.same_as:
     if theirs != changes:
         fail(f"change points differ: {changes} vs {theirs} in {a.same_as}")
     print(f"  {len(rows)} rows and the change points agree with {a.same_as}")
+for png in a.png:
+    if not os.path.isfile(png) or os.path.getsize(png) == 0:
+        fail(f"no chart {png}")
 print("check_load_ladder.py: ok")
