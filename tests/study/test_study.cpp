@@ -590,9 +590,9 @@ TEST(StudyFidelityLoadAxis, DynamicLadderIsMeasuredAgainstTheFullRungOfTheSameSc
   // tests/study/fidelity_load_dynamic.yaml: the struck cantilever (inputs/beam_impulse.yaml), 2 modes
   // and full, the pulse scaled by 0.01 and 0.1. Both models respond linearly to a load this small
   // (tip deflection ≤ 2 cm on a 10 m beam: the full mesh's nonlinear terms are O(deflection/length)
-  // ~ 1e-3 of the response), so the error over the range of tip_y — the truncation to 2 modes — is
-  // the same at both scales to that order; measured against the other scale's full run it would be
-  // off by the factor 10 between the ranges.
+  // ≤ 2e-3 of the response), so the error over the range of tip_y — the truncation to 2 modes — is
+  // the same at both scales to that order (measured: 0.25637 at both, 5e-6 apart); measured against
+  // the other scale's full run it would be off by the factor 10 between the ranges.
   const StudyResult r = run("inputs/beam_impulse.yaml", "tests/study/fidelity_load_dynamic.yaml");
   ASSERT_EQ(r.rows.size(), 4u);
   EXPECT_EQ(r.load_scales, (std::vector<double>{0.01, 0.1}));
@@ -606,7 +606,7 @@ TEST(StudyFidelityLoadAxis, DynamicLadderIsMeasuredAgainstTheFullRungOfTheSameSc
   EXPECT_EQ(r.rows[3].get("max"), 0.0);
   const double e1 = r.rows[0].get("max"), e2 = r.rows[2].get("max");
   EXPECT_GT(e1, 0.01);  // 2 modes miss the pulse's higher modes: not acceptable at 1 %
-  EXPECT_NEAR(e2 / e1, 1.0, 1e-2) << e1 << " " << e2;
+  EXPECT_NEAR(e2 / e1, 1.0, 2e-3) << e1 << " " << e2;
   EXPECT_EQ(r.load_lightest, (std::vector<std::string>{"full", "full"}));
   EXPECT_EQ(r.load_changes, std::vector<std::string>{"lightest acceptable variant is `full` at every load scale (0.01 to 0.1)"});
   ASSERT_EQ(r.load_recommendations.size(), 2u);
