@@ -169,15 +169,17 @@ std::vector<std::string> load_overrides(const LoadAxis& axis, double scale) {
   std::vector<std::string> o;
   for (size_t k = 0; k < axis.keys.size(); ++k) {
     const YAML::Node& v = axis.values[k];
-    std::string value;
+    YAML::Node value;
     if (v.IsSequence()) {
-      value = "[";
-      for (size_t i = 0; i < v.size(); ++i) value += (i ? ", " : "") + scaled(v[i]);
-      value += "]";
+      value = YAML::Node(YAML::NodeType::Sequence);
+      for (size_t i = 0; i < v.size(); ++i) value.push_back(scaled(v[i]));
     } else {
       value = scaled(v);
     }
-    o.push_back(axis.keys[k] + "=" + value);
+    // Emitted, not pasted: an expression with a comma (`atan2(a, b)`) is quoted inside a list.
+    YAML::Emitter out;
+    out << YAML::Flow << value;
+    o.push_back(axis.keys[k] + "=" + out.c_str());
   }
   return o;
 }

@@ -527,6 +527,16 @@ TEST(StudyFidelityLoadAxis, KeysAndScalesBecomeAssignmentsThatMultiplyTheScenesN
                          "  load: {keys: [forces.0.value], scale: [0.5]}\n  tolerance: 0.01\n";
   EXPECT_EQ(load_overrides(read_study(src("inputs/beam_elastica.yaml"), file).load, 0.5),
             std::vector<std::string>{"forces.0.value=[0, 1, 0.75]"});
+  // An expression with a comma stays one element of the vector (quoted), and evaluates scaled.
+  LoadAxis comma;
+  comma.keys = {"forces.0.value"};
+  comma.values = {YAML::Load("[0, 'max(P, 20)', 1e3]")};
+  const std::vector<std::string> c = load_overrides(comma, 0.5);
+  ASSERT_EQ(c.size(), 1u);
+  input::apply_override(scene, c[0], "--set", "scene");
+  ASSERT_EQ(scene["forces"][0]["value"].size(), 3u) << c[0];
+  EXPECT_DOUBLE_EQ(rd.number(scene["forces"][0]["value"][1], "y"), 20.0 * 0.5) << c[0];
+  EXPECT_EQ(rd.number(scene["forces"][0]["value"][2], "z"), 500.0) << c[0];
   // No load axis: no assignments, no change.
   EXPECT_TRUE(load_overrides(LoadAxis{}, 2.0).empty());
 }
