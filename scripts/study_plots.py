@@ -14,6 +14,8 @@ Writes next to the CSV, by the study's mode:
   oscillation  NAME_oscillation.png     sensor histories and total variation per unit time
   blow_up      NAME_blow_up.png         growth of the multipliers' second difference vs the predicted roots
   fidelity     NAME_fidelity.png        sensor differences vs CPU time, strain-energy shares
+               NAME_fidelity_load.png   with a load axis (study.load): each rung's error vs the load
+                                        scale, the tolerance and where the lightest acceptable rung changes
 """
 import math
 import os
@@ -452,6 +454,33 @@ def fidelity(csv_path, comments, rows, base):
     save(fig, base + "_fidelity.png")
 
 
+def fidelity_load(csv_path, comments, rows, base):
+    """A ladder over a load axis (study.load): err_max of each rung against the load scale, log-log,
+    the tolerance as a line, the change points of the lightest acceptable rung in the title (the
+    CSV's `# load axis:` lines). The full rung, the reference at every scale (error 0), is left out."""
+    name = title_of(comments)
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    for k, label in enumerate(labels_in_order(rows)):
+        pts = sorted((f(r["load_scale"]), f(r.get("err_max"))) for r in rows if r["label"] == label)
+        pts = [(s, e) for s, e in pts if s > 0 and e > 0]
+        if pts:
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], marker=MARKERS[k % len(MARKERS)], lw=1.2, label=label)
+    tol = next((m.group(1) for c in comments if c.startswith("recommendation at load scale")
+                for m in [re.search(r": tolerance ([0-9.eE+-]+)", c)] if m), None)
+    if tol:
+        ax.axhline(float(tol), color="tab:red", ls=":", lw=1.2, label=f"tolerance {tol}")
+    # Acceptable points ringed: the lightest acceptable rung at each scale is the first of them.
+    acc = [(f(r["load_scale"]), f(r["err_max"])) for r in rows if r.get("acceptable") == "1" and f(r.get("err_max")) > 0]
+    if acc:
+        ax.plot([p[0] for p in acc], [p[1] for p in acc], "o", ms=11, mfc="none", mec="tab:green", label="acceptable")
+    ax.set(xlabel="load scale (factor on study.load.keys)",
+           ylabel="max over t of |rung - full| (as study.errors)", title="error of each rung against the load")
+    grid_and_legend(ax)
+    changes = [c[len("load axis: "):] for c in comments if c.startswith("load axis: lightest")]
+    suptitle(fig, f"{name}: where the lightest acceptable rung changes\n" + "; ".join(changes))
+    save(fig, base + "_fidelity_load.png")
+
+
 def main():
     global PART
     args = sys.argv[1:]
@@ -471,6 +500,8 @@ def main():
     mode = rows[0]["mode"]
     {"convergence": convergence, "oscillation": oscillation, "blow_up": blow_up,
      "fidelity": fidelity}[mode](path, comments, rows, base)
+    if mode == "fidelity" and "load_scale" in rows[0]:
+        fidelity_load(path, comments, rows, base)
 
 
 if __name__ == "__main__":

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace alphaflex::study {
@@ -10,6 +11,13 @@ namespace alphaflex::study {
 namespace {
 // The lists of the scene that hold beam and shell blocks (io/types/beams_*.cpp, shells_3d.cpp).
 const char* const kBlockLists[] = {"beams", "shells"};
+
+/// A load scale as the study file gives it (6 significant digits, as the CSV's load_scale column).
+std::string scale_text(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
 
 std::string sig3(double x) {
   char b[32];
@@ -81,6 +89,12 @@ double history_error(const std::vector<double>& x, const std::vector<double>& x_
   return relative && range > 0.0 ? dmax / range : dmax;
 }
 
+double history_range(const std::vector<double>& x) {
+  if (x.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  return *hi - *lo;
+}
+
 std::vector<size_t> matching_times(const std::vector<double>& t, const std::vector<double>& t_full, std::string& why) {
   std::vector<size_t> at;
   size_t j = 0;
@@ -98,12 +112,13 @@ std::vector<size_t> matching_times(const std::vector<double>& t, const std::vect
   return at;
 }
 
-Recommendation recommend(const std::vector<Rung>& rungs, double tolerance) {
+Recommendation recommend(const std::vector<Rung>& rungs, double tolerance, const std::string& measure) {
   Recommendation r;
   r.acceptable.resize(rungs.size(), false);
   for (size_t i = 0; i < rungs.size(); ++i) {
     const Rung& g = rungs[i];
     r.acceptable[i] = g.ok && g.error <= tolerance;  // NaN compares false: not acceptable
+    if (r.acceptable[i] && r.first_acceptable < 0) r.first_acceptable = static_cast<int>(i);
     if (r.acceptable[i] && (r.lightest < 0 || g.cpu < rungs[static_cast<size_t>(r.lightest)].cpu)) r.lightest = static_cast<int>(i);
   }
   // From the heaviest rung down: the ladder is acceptable from the first rung after the last
@@ -113,7 +128,7 @@ Recommendation recommend(const std::vector<Rung>& rungs, double tolerance) {
     if (r.acceptable[static_cast<size_t>(i)]) r.acceptable_from = i;
   }
   std::ostringstream os;
-  os << "tolerance " << sig3(tolerance) << " (max error over the sensors, relative to each sensor's range in the full run): ";
+  os << "tolerance " << sig3(tolerance) << " (" << measure << "): ";
   if (r.lightest < 0) {
     os << "no variant is within it";
   } else {
@@ -134,6 +149,52 @@ Recommendation recommend(const std::vector<Rung>& rungs, double tolerance) {
   if (!failed.empty()) os << "; failed or not measured: " << failed;
   r.text = os.str();
   return r;
+}
+
+std::vector<std::string> load_overrides(const LoadAxis& axis, double scale) {
+  char factor[40];
+  std::snprintf(factor, sizeof factor, "%.17g", scale);
+  // One scalar times the scale: a number stays a number, anything else is an expression.
+  const auto scaled = [&](const YAML::Node& v) -> std::string {
+    const std::string& text = v.Scalar();
+    char* end = nullptr;
+    const double x = std::strtod(text.c_str(), &end);
+    if (!text.empty() && end && *end == '\0') {
+      char b[40];
+      std::snprintf(b, sizeof b, "%.17g", x * scale);
+      return b;
+    }
+    return "(" + text + ")*" + factor;
+  };
+  std::vector<std::string> o;
+  for (size_t k = 0; k < axis.keys.size(); ++k) {
+    const YAML::Node& v = axis.values[k];
+    YAML::Node value;
+    if (v.IsSequence()) {
+      value = YAML::Node(YAML::NodeType::Sequence);
+      for (size_t i = 0; i < v.size(); ++i) value.push_back(scaled(v[i]));
+    } else {
+      value = scaled(v);
+    }
+    // Emitted, not pasted: an expression with a comma (`atan2(a, b)`) is quoted inside a list.
+    YAML::Emitter out;
+    out << YAML::Flow << value;
+    o.push_back(axis.keys[k] + "=" + out.c_str());
+  }
+  return o;
+}
+
+std::vector<std::string> load_change_points(const std::vector<double>& scales, const std::vector<std::string>& lightest) {
+  const auto name = [](const std::string& l) { return l.empty() ? std::string("none") : "`" + l + "`"; };
+  std::vector<std::string> lines;
+  for (size_t i = 1; i < scales.size() && i < lightest.size(); ++i)
+    if (lightest[i] != lightest[i - 1])
+      lines.push_back("lightest acceptable variant changes from " + name(lightest[i - 1]) + " to " + name(lightest[i]) +
+                      " between load scale " + scale_text(scales[i - 1]) + " and " + scale_text(scales[i]));
+  if (lines.empty() && !scales.empty() && !lightest.empty())
+    lines.push_back("lightest acceptable variant is " + name(lightest.front()) + " at every load scale (" + scale_text(scales.front()) +
+                    (scales.size() > 1 ? " to " + scale_text(scales.back()) : std::string()) + ")");
+  return lines;
 }
 
 }  // namespace alphaflex::study

@@ -305,7 +305,8 @@ class Study {
       // cannot be built (a key this build does not know, bad overrides) is a failed row.
       for (const auto& v : spec_.variants)
         if (v.label == spec_.reference_variant) {
-          const Scene sc = scene_for(variant_setting(v), h, v.scene);
+          // With a load axis: at its first scale (the load overrides are checked by the scene reader).
+          const Scene sc = scene_for(variant_setting(at_load(v, 0)), h, v.scene);
           reference_unknowns_ = sc.model->num_dofs() + sc.model->num_multipliers();
           for (const auto& s : spec_.sensors) {
             std::string names;
@@ -1069,6 +1070,19 @@ class Study {
     return out;
   }
 
+  /// Load levels of a fidelity study: one per `study.load.scale`, or one (the scene's loads).
+  size_t load_levels() const { return spec_.load.given() ? spec_.load.scales.size() : 1; }
+
+  /// Variant `v` at load level `level`: its overrides and then the load axis's (the keys times the
+  /// level's scale, fidelity_ladder.hpp), applied last.
+  ModelVariant at_load(const ModelVariant& v, size_t level) const {
+    if (!spec_.load.given()) return v;
+    ModelVariant w = v;
+    const std::vector<std::string> o = load_overrides(spec_.load, spec_.load.scales[level]);
+    w.overrides.insert(w.overrides.end(), o.begin(), o.end());
+    return w;
+  }
+
   void fidelity() {
     const double h = spec_.h.empty() ? 0.0 : spec_.h.front();
     const int k = opt_.ranks_per_run > 0 ? opt_.ranks_per_run : default_ranks_per_run(reference_unknowns_, size_);
@@ -1077,49 +1091,82 @@ class Study {
     run_ranks_ = k;
     std::ostringstream groups;
     if (size_ > k) groups << ", " << size_ / k << " runs at a time on " << k << " rank(s) each";
-    say("study " + spec_.name + ": fidelity, " + std::to_string(spec_.variants.size()) +
-        (spec_.ladder ? " rungs of the ladder" : " model variants") + groups.str());
+    const size_t nv = spec_.variants.size(), levels = load_levels();
+    say("study " + spec_.name + ": fidelity, " + std::to_string(nv) +
+        (spec_.ladder ? " rungs of the ladder" : " model variants") +
+        (spec_.load.given() ? " at " + std::to_string(levels) + " load scales" : std::string()) + groups.str());
     // Cost estimate for the order of the runs: the reference (the most detailed model) first.
+    // Task i is variant i % nv at load level i / nv.
     std::vector<double> cost;
     size_t iref = 0;
-    for (size_t i = 0; i < spec_.variants.size(); ++i) {
-      const bool is_ref = spec_.variants[i].label == spec_.reference_variant;
-      if (is_ref) iref = i;
-      cost.push_back(is_ref ? 2.0 : 1.0);
-    }
+    for (size_t l = 0; l < levels; ++l)
+      for (size_t i = 0; i < nv; ++i) {
+        const bool is_ref = spec_.variants[i].label == spec_.reference_variant;
+        if (is_ref) iref = i;
+        cost.push_back(is_ref ? 2.0 : 1.0);
+      }
     std::vector<RunOutcome> runs = run_tasks(
-        cost, k, [&](size_t i, MPI_Comm comm) { return fidelity_run(spec_.variants[i], h, comm); }, false);
-    const RunOutcome& ref = runs[iref];
+        cost, k, [&](size_t i, MPI_Comm comm) { return fidelity_run(at_load(spec_.variants[i % nv], i / nv), h, comm); },
+        false);
     const ModelVariant& refv = spec_.variants[iref];
-    res_.reference_label = "model variant '" + refv.label + "' (" + refv.scene + ")";
-    if (!ref.row.ok)
-      fatal_ = "the reference variant '" + refv.label + "' failed, so no error can be measured: " + ref.row.failure;
+    res_.reference_label = "model variant '" + refv.label + "' (" + refv.scene + ")" +
+                           (spec_.load.given() ? " at the same load scale" : std::string());
     // Sensors: those asked (each in the reference), or those the reference and every variant that
     // ran have (a rigid scene may lack a flexible part's sensors).
     if (!spec_.sensors.empty()) {
       sensors_ = spec_.sensors;
     } else {
-      for (const auto& n : ref.sensor_names) {
-        bool all = true;
-        for (const auto& r : runs) all = all && (!r.row.ok || std::count(r.sensor_names.begin(), r.sensor_names.end(), n));
-        if (all) sensors_.push_back(n);
-      }
+      const RunOutcome* ref = nullptr;
+      for (size_t l = 0; l < levels && !ref; ++l)
+        if (runs[l * nv + iref].row.ok) ref = &runs[l * nv + iref];
+      if (ref)
+        for (const auto& n : ref->sensor_names) {
+          bool all = true;
+          for (const auto& r : runs) all = all && (!r.row.ok || std::count(r.sensor_names.begin(), r.sensor_names.end(), n));
+          if (all) sensors_.push_back(n);
+        }
     }
     res_.error_names = sensors_;
     res_.error_names.push_back("max");
+    for (size_t l = 0; l < levels; ++l) {
+      std::vector<RunOutcome*> level;
+      for (size_t i = 0; i < nv; ++i) level.push_back(&runs[l * nv + i]);
+      measure_level(level, iref, l);
+    }
+    if (spec_.load.given()) {
+      res_.load_changes = load_change_points(spec_.load.scales, res_.load_lightest);
+      for (const auto& c : res_.load_changes) say("load axis: " + c);
+    }
+  }
+
+  /// The errors of one load level's variants against its reference variant `iref`, the
+  /// recommendation, the rows.
+  void measure_level(const std::vector<RunOutcome*>& runs, size_t iref, size_t level) {
+    const bool axis = spec_.load.given();
+    const double scale = axis ? spec_.load.scales[level] : kNaN;
+    const std::string at = axis ? " at load scale " + sig6(scale) : std::string();
+    const RunOutcome& ref = *runs[iref];
+    if (!ref.row.ok && fatal_.empty())
+      fatal_ = "the reference variant '" + ref.row.label + "' failed" + at + ", so no error can be measured: " + ref.row.failure;
     const bool relative = spec_.relative_errors;
     auto history = [](const RunOutcome& r, const std::string& s) -> const std::vector<double>* {
       const auto it = std::find(r.sensor_names.begin(), r.sensor_names.end(), s);
       return it == r.sensor_names.end() ? nullptr : &r.histories[static_cast<size_t>(it - r.sensor_names.begin())];
     };
+    // errors: largest_range: one divisor, the largest range of the study's sensors in the reference.
+    double common_range = 0.0;
+    if (spec_.largest_range && ref.row.ok)
+      for (const auto& s : sensors_)
+        if (const std::vector<double>* xr = history(ref, s)) common_range = std::max(common_range, history_range(*xr));
     for (size_t i = 0; i < runs.size(); ++i) {
-      StudyRow& row = runs[i].row;
-      const RunOutcome& r = runs[i];
+      StudyRow& row = runs[i]->row;
+      const RunOutcome& r = *runs[i];
+      row.load_scale = scale;
       if (row.ok && ref.row.ok) {
         // The error: per sensor max over the reference's output times of |x − x_ref| over the
         // sensor's range in the reference run (fidelity_ladder.hpp), then the max over the sensors.
         std::string why;
-        const std::vector<size_t> at = matching_times(r.times, ref.times, why);
+        const std::vector<size_t> times = matching_times(r.times, ref.times, why);
         double worst = 0.0;
         for (const auto& s : sensors_) {
           const std::vector<double>* x = history(r, s);
@@ -1127,17 +1174,19 @@ class Study {
             why = "the variant's scene has no sensor named '" + s + "' (study.sensors)";
             break;
           }
-          if (at.empty()) break;
+          if (times.empty()) break;
           std::vector<double> xs;
-          for (size_t j : at) xs.push_back((*x)[j]);
+          for (size_t j : times) xs.push_back((*x)[j]);
           const std::vector<double>& xr = *history(ref, s);
-          const double e = history_error(xs, xr, relative);
+          const double e = spec_.largest_range
+                               ? history_error(xs, xr, false) / (common_range > 0.0 ? common_range : 1.0)
+                               : history_error(xs, xr, relative);
           row.errors[s] = e;
           worst = std::isnan(e) || std::isnan(worst) ? kNaN : std::max(worst, e);
-          double lo = xr.empty() ? 0.0 : *std::min_element(xr.begin(), xr.end());
-          double hi = xr.empty() ? 0.0 : *std::max_element(xr.begin(), xr.end());
-          if (relative && !(hi > lo) && i == iref)
-            warn("sensor '" + s + "' is constant in the reference run: its error is the absolute difference");
+          if (relative && !(history_range(xr) > 0.0) && i == iref)
+            warn("sensor '" + s + "' is constant in the reference run" + at + ": its error is the absolute difference");
+          if (spec_.largest_range && !(common_range > 0.0) && i == iref && s == sensors_.front())
+            warn("every sensor is constant in the reference run" + at + ": the errors are absolute differences");
         }
         if (why.empty()) {
           row.errors["max"] = worst;
@@ -1148,31 +1197,53 @@ class Study {
         }
       }
       row.extra.emplace_back("cpu_ratio", r.row.steps > 0 && ref.row.ok && ref.row.cpu > 0.0 ? r.row.cpu / ref.row.cpu : kNaN);
-      for (const auto& e : r.energy) res_.energy.push_back(e);
+      for (auto e : r.energy) {
+        if (axis) e.variant += " at load scale " + sig6(scale);
+        res_.energy.push_back(e);
+      }
     }
+    std::string lightest;
     if (spec_.tolerance > 0.0 && ref.row.ok) {
       std::vector<Rung> rungs;
-      for (const auto& r : runs) rungs.push_back({r.row.label, r.row.ok, r.row.cpu, r.row.ok ? r.row.errors.at("max") : kNaN});
-      const Recommendation rec = recommend(rungs, spec_.tolerance);
+      for (const auto* r : runs) rungs.push_back({r->row.label, r->row.ok, r->row.cpu, r->row.ok ? r->row.errors.at("max") : kNaN});
+      const Recommendation rec = recommend(
+          rungs, spec_.tolerance,
+          spec_.largest_range ? "max error over the sensors, relative to the largest sensor range in the full run"
+          : relative          ? "max error over the sensors, relative to each sensor's range in the full run"
+                              : "max absolute error over the sensors");
       for (size_t i = 0; i < runs.size(); ++i) {
-        runs[i].row.extra.emplace_back("acceptable", rec.acceptable[i] ? 1.0 : 0.0);
-        runs[i].row.extra.emplace_back("recommended", static_cast<int>(i) == rec.lightest ? 1.0 : 0.0);
+        runs[i]->row.extra.emplace_back("acceptable", rec.acceptable[i] ? 1.0 : 0.0);
+        runs[i]->row.extra.emplace_back("recommended", static_cast<int>(i) == rec.lightest ? 1.0 : 0.0);
       }
-      res_.recommendation = rec.text;
-      res_.recommended = rec.lightest >= 0 ? runs[static_cast<size_t>(rec.lightest)].row.label : "";
-      res_.acceptable_from = rec.acceptable_from >= 0 ? runs[static_cast<size_t>(rec.acceptable_from)].row.label : "";
+      if (axis) {
+        res_.load_recommendations.push_back(rec.text);
+        lightest = rec.first_acceptable >= 0 ? runs[static_cast<size_t>(rec.first_acceptable)]->row.label : "";
+      } else {
+        res_.recommendation = rec.text;
+        res_.recommended = rec.lightest >= 0 ? runs[static_cast<size_t>(rec.lightest)]->row.label : "";
+        res_.acceptable_from = rec.acceptable_from >= 0 ? runs[static_cast<size_t>(rec.acceptable_from)]->row.label : "";
+      }
+    } else if (axis) {
+      res_.load_recommendations.push_back("");
     }
-    for (const auto& r : runs) {
-      print_row(r.row);
+    if (axis) {
+      res_.load_scales.push_back(scale);
+      res_.load_lightest.push_back(lightest);
+      say("load scale " + sig6(scale) + ":");
+    }
+    for (const auto* r : runs) {
+      print_row(r->row);
       if (opt_.verbose && rank_ == 0)
-        for (const auto& e : r.energy)
+        for (const auto& e : r->energy)
           std::cout << "      strain energy of " << e.kind << " '" << e.part << "' (" << e.elements
                     << " elements): mean " << sci(e.mean) << " J, peak " << sci(e.peak) << " J, share "
                     << std::fixed << std::setprecision(1) << 100.0 * e.share_mean << " % of the mean, "
                     << 100.0 * e.share_peak << " % at the peak" << std::defaultfloat << std::endl;
-      res_.rows.push_back(r.row);
+      res_.rows.push_back(r->row);
     }
     if (!res_.recommendation.empty()) say("recommendation: " + res_.recommendation);
+    if (axis && !res_.load_recommendations.back().empty())
+      say("recommendation at load scale " + sig6(scale) + ": " + res_.load_recommendations.back());
   }
 
   // ------------------------------------------------------------------ output
@@ -1227,16 +1298,29 @@ class Study {
         << " at t_end (err_q, err_v, err_lambda: infinity norms of the state against the reference run)\n";
     if (spec_.mode == StudyMode::Fidelity)
       f << "# fidelity errors: per sensor the max over the reference's output times of |variant - reference|"
-        << (spec_.relative_errors ? " / the sensor's range (max - min) in the reference run" : "")
+        << (spec_.relative_errors ? " / the sensor's range (max - min) in the reference run"
+            : spec_.largest_range ? " / the largest range (max - min) of the study's sensors in the reference run"
+                                  : "")
         << "; err_max: the max over the sensors\n";
     if (!res_.recommendation.empty()) f << "# recommendation: " << res_.recommendation << "\n";
+    for (size_t l = 0; l < res_.load_recommendations.size(); ++l)
+      if (!res_.load_recommendations[l].empty())
+        f << "# recommendation at load scale " << sig6(res_.load_scales[l]) << ": " << res_.load_recommendations[l] << "\n";
+    if (spec_.load.given()) {
+      std::string keys;
+      for (const auto& k : spec_.load.keys) keys += (keys.empty() ? "" : ", ") + k;
+      f << "# load axis: every rung at each load_scale, the scene's " << keys
+        << " multiplied by it; errors against the full rung at the same scale\n";
+      for (const auto& c : res_.load_changes) f << "# load axis: " << c << "\n";
+    }
     f << "# cpu: process CPU time (s) of each run, summed over its " << (run_ranks_ > 0 ? run_ranks_ : size_)
       << " MPI rank(s); wall: elapsed (s)\n";
     std::vector<std::string> extras;
     for (const auto& r : res_.rows)
       for (const auto& [k, v] : r.extra)
         if (std::find(extras.begin(), extras.end(), k) == extras.end()) extras.push_back(k);
-    f << "mode,method,label,scheme,rho_inf,alpha_m,alpha_f,beta,gamma,scaling,h,tol,t_end,status,steps,newton_total,"
+    const bool axis = spec_.load.given();
+    f << "mode,method,label," << (axis ? "load_scale," : "") << "scheme,rho_inf,alpha_m,alpha_f,beta,gamma,scaling,h,tol,t_end,status,steps,newton_total,"
          "newton_mean,newton_max,cpu,cpu_per_step,wall";
     for (const auto& e : res_.error_names) f << ",err_" << e;
     for (const auto& e : extras) f << "," << e;
@@ -1244,6 +1328,7 @@ class Study {
     for (const auto& r : res_.rows) {
       const bool ours = r.method == "alphaflex";
       f << mode_name(spec_.mode) << "," << r.method << "," << r.label << ",";
+      if (axis) f << (std::isnan(r.load_scale) ? std::string() : sig6(r.load_scale)) << ",";
       if (ours && !std::isnan(r.t_end))  // a variant that could not be built has no scheme (t_end NaN)
         f << r.params.scheme << "," << sig6(r.params.rho_infinity()) << "," << num(r.params.alpha_m) << ","
           << num(r.params.alpha_f) << "," << num(r.params.beta) << "," << num(r.params.gamma) << ","

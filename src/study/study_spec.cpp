@@ -49,13 +49,14 @@ const Schema kStudy{"study", {
     {"reference", KeyType::Map, "–", "none (**required** for `convergence`)", "what the errors are measured against (`study.reference`)"},
     {"sensors", KeyType::Texts, "–", "every sensor with a reference value (`convergence`), every sensor (otherwise)", "the sensors to report; each must exist in the scene", {}, "", "list of names"},
     {"set", KeyType::Texts, "–", "none", "scene overrides `key=value` applied to every run (after the setting's solver keys, before the command line's `--set`)", {}, "", "list of `key=value`"},
-    {"errors", KeyType::Choice, "–", "`relative`", "`relative`: |x − x_ref| / |x_ref| (absolute if x_ref = 0); `absolute`", {}, "", "", {"relative", "absolute"}},
+    {"errors", KeyType::Choice, "–", "`relative`", "`relative`: |x − x_ref| / |x_ref| (absolute if x_ref = 0; `fidelity`: max over t of |x − x_ref| / the sensor's range in the reference run); `absolute`; `largest_range` (`fidelity` only): max over t of |x − x_ref| / the largest range of the study's sensors in the reference run, for sensors of one quantity (the components of a displacement: the error relative to the size of the motion)", {}, "", "", {"relative", "absolute", "largest_range"}},
     {"condition_number", KeyType::Flag, "–", "off", "`convergence`: the condition numbers of S_t at the last state of each run"},
     {"peers", KeyType::Map, "–", "none", "`convergence` only: other solvers on the same problem (`study.peers`)"},
     {"variants", KeyType::List, "–", "**required** for `fidelity` without `reduce` (at least 2)", "model variants (`study.variants`)"},
     {"reference_variant", KeyType::Text, "–", "the last variant", "`fidelity` with `variants`: the label of the variant the others are compared with"},
     {"reduce", KeyType::Map, "–", "none", "`fidelity`: the ladder rigid → reduced → full mesh of blocks of the scene, built from the one scene (`study.reduce`); not with `variants`"},
-    {"tolerance", KeyType::Number, "–", "none (**required** with `reduce`)", "`fidelity`: the largest acceptable error of a variant (max over the sensors of max over the output times of |variant − reference| / the sensor's range in the reference run); the study recommends the variant of least CPU time within it", Range::positive(), "tolerance"},
+    {"load", KeyType::Map, "–", "none", "`fidelity` with `reduce`: the load axis (`study.load`): the whole ladder runs once per load scale, errors against that scale's `full` rung, and the study prints where the lightest acceptable rung changes"},
+    {"tolerance", KeyType::Number, "–", "none (**required** with `reduce`)", "`fidelity`: the largest acceptable error of a variant (max over the sensors of max over the output times of |variant − reference| / the sensor's range in the reference run, or as `errors` says); the study recommends the variant of least CPU time within it", Range::positive(), "tolerance"},
     {"plots", KeyType::Flag, "–", "on", "call the plotting script after writing the CSVs"},
     {"python", KeyType::Text, "–", "`/usr/bin/python3`", "interpreter for the plotting script and the Radau peer"},
     {"plot_script", KeyType::Text, "–", "`scripts/study_plots.py` of the source tree", "relative to the study file"}}};
@@ -94,6 +95,9 @@ const Schema kReduce{"study.reduce", {
 const Schema kReduceBlock{"study.reduce.blocks", {
     {"name", KeyType::Text, "–", kRequired, "a beam or shell block of the scene"},
     {"interface", KeyType::Texts, "–", "`study.reduce.interface`", "this block's interface points", {}, "", "list of names"}}};
+const Schema kLoad{"study.load", {
+    {"keys", KeyType::Texts, "–", kRequired, "the scene's numbers to scale, as `--set` names them (`load.factor`, `forces.0.value`): each a number, an expression of the scene's `parameters` or a list of them (a vector)", {}, "", "list of key paths"},
+    {"scale", KeyType::Numbers, "–", kRequired, "the load scales, increasing: every rung runs with each key multiplied by each scale", Range::positive(), "load scale", "number or list"}}};
 const Schema kStudyFile{"study.file", {{"study", KeyType::Map, "–", kRequired, "the study map"}}};
 
 /// A non-empty string (labels, names, paths).
@@ -235,10 +239,75 @@ void read_ladder(const Reader& rd, const YAML::Node& r, const YAML::Node& scene_
   spec.ladder = true;
 }
 
+/// `study.load`: the keys (each a number, an expression or a list of them in the scene, after the
+/// study's `set:`) and the increasing positive scales.
+void read_load(const Reader& rd, const YAML::Node& l, const YAML::Node& scene_root, StudySpec& spec) {
+  const Section load(rd, l, "study.load", kLoad);
+  LoadAxis& a = spec.load;
+  a.keys = load.texts("keys");
+  if (a.keys.empty()) rd.fail(load.node("keys"), "study.load.keys", "expected a non-empty list of scene keys to scale (e.g. [load.factor])");
+  a.scales = load.numbers("scale");
+  for (size_t i = 1; i < a.scales.size(); ++i)
+    if (!(a.scales[i] > a.scales[i - 1]))
+      rd.fail(load.node("scale"), "study.load.scale", "expected increasing load scales (the change points lie between neighbours)");
+  // The scene as the runs see it before the load: the scene file with the study's `set:`.
+  YAML::Node scene = YAML::Clone(scene_root);
+  for (const auto& o : spec.overrides) input::apply_override(scene, o, "study.set", rd.file());
+  Reader scene_reader(spec.scene);
+  scene_reader.read_parameters(scene["parameters"]);
+  const YAML::Node keys = load.node("keys");
+  for (size_t k = 0; k < a.keys.size(); ++k) {
+    const std::string& path = a.keys[k];
+    const YAML::Node at = keys.IsSequence() ? keys[k] : keys;
+    const std::string key = "study.load.keys[" + std::to_string(k) + "]";
+    if (std::count(a.keys.begin(), a.keys.begin() + static_cast<long>(k), path)) rd.fail(at, key, "the key '" + path + "' is given twice");
+    // Walk the path as --set does (maps by key, lists by index), without creating anything
+    // (const access; reset() rebinds a handle, where yaml-cpp's operator= would overwrite the node).
+    YAML::Node n = scene;
+    std::string rest = path, walked;
+    while (!rest.empty()) {
+      const size_t dot = rest.find('.');
+      const std::string part = rest.substr(0, dot);
+      rest = dot == std::string::npos ? "" : rest.substr(dot + 1);
+      const YAML::Node& here = n;
+      const bool index = !part.empty() && part.size() < 9 && part.find_first_not_of("0123456789") == std::string::npos;
+      if (here.IsSequence() && index && std::stoul(part) < here.size())
+        n.reset(here[std::stoul(part)]);
+      else if (here.IsMap() && !part.empty() && here[part])
+        n.reset(here[part]);
+      else
+        rd.fail(at, key, "the scene " + spec.scene + " has no key '" + path + "' (no '" + part + "'" +
+                             (walked.empty() ? std::string(" at its top level") : " in '" + walked + "'") + ")");
+      walked += (walked.empty() ? "" : ".") + part;
+    }
+    // A number, an expression of the parameters or a list of them: what the scene reader would read.
+    const auto check = [&](const YAML::Node& x, const std::string& which) {
+      std::string why = "not a number";
+      if (x.IsScalar()) {
+        try {
+          scene_reader.number(x, which);
+          return;
+        } catch (const InputError& e) {
+          why = e.what();
+        }
+      }
+      rd.fail(at, key, "the scene's '" + path + "' is not a number, an expression of its parameters or a list of them (" +
+                           (x.IsMap() ? std::string("a map") : why) + "): a load scale multiplies numbers");
+    };
+    if (n.IsSequence()) {
+      if (n.size() == 0) rd.fail(at, key, "the scene's '" + path + "' is an empty list: nothing to scale");
+      for (size_t i = 0; i < n.size(); ++i) check(n[i], path + "[" + std::to_string(i) + "]");
+    } else {
+      check(n, path);
+    }
+    a.values.push_back(YAML::Clone(n));
+  }
+}
+
 }  // namespace
 
 std::vector<const input::Schema*> schemas() {
-  return {&kStudyFile, &kStudy, &kSetting, &kReference, &kPeers, &kVariant, &kReduce, &kReduceBlock};
+  return {&kStudyFile, &kStudy, &kSetting, &kReference, &kPeers, &kVariant, &kReduce, &kReduceBlock, &kLoad};
 }
 
 StudySpec read_study(const std::string& scene_path, const std::string& study_path,
@@ -341,7 +410,11 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
     rd.fail(s, "study.reference", "missing: a convergence study needs a reference (file with source, or a run step size h)");
   if (study.has("sensors")) spec.sensors = study.texts("sensors");
   if (study.has("set")) spec.overrides = assignments(rd, study, "set");
-  spec.relative_errors = study.choice("errors", spec.relative_errors ? 0 : 1) == 0;
+  const int errors = study.choice("errors", spec.relative_errors ? 0 : 1);
+  spec.relative_errors = errors == 0;
+  spec.largest_range = errors == 2;
+  if (spec.largest_range && spec.mode != StudyMode::Fidelity)
+    rd.fail(s["errors"], "study.errors", "largest_range belongs to mode fidelity (errors over the sensors' histories)");
   spec.condition_number = study.flag("condition_number", spec.condition_number);
 
   if (const YAML::Node p = s["peers"]) {
@@ -357,6 +430,8 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
     spec.tolerance = study.number("tolerance");
     if (spec.mode != StudyMode::Fidelity) rd.fail(s["tolerance"], "study.tolerance", "only in mode fidelity");
   }
+  if (s["load"] && !s["reduce"])
+    rd.fail(s["load"], "study.load", "the load axis runs the reduction ladder at each load scale: give study.reduce (mode fidelity)");
   if (const YAML::Node r = s["reduce"]) {
     if (spec.mode != StudyMode::Fidelity) rd.fail(r, "study.reduce", "the reduction ladder belongs to mode: fidelity");
     if (s["variants"]) rd.fail(s["variants"], "study.variants", "give either study.reduce (the ladder) or study.variants, not both");
@@ -364,6 +439,7 @@ StudySpec read_study(const std::string& scene_path, const std::string& study_pat
       rd.fail(s["reference_variant"], "study.reference_variant", "with study.reduce the reference is the rung `full`");
     if (!s["tolerance"]) rd.fail(s, "study.tolerance", "missing: the largest acceptable error of a rung (e.g. 0.01: 1 % of each sensor's range)");
     read_ladder(rd, r, scene_root, spec);
+    if (const YAML::Node l = s["load"]) read_load(rd, l, scene_root, spec);
   } else if (const YAML::Node v = s["variants"]) {
     if (spec.mode != StudyMode::Fidelity) rd.fail(v, "study.variants", "variants belong to mode: fidelity");
     if (!v.IsSequence() || v.size() < 2) rd.fail(v, "study.variants", "expected a list of at least 2 variants {label, scene, set}");

@@ -50,10 +50,31 @@ std::vector<std::string> rung_overrides(const ReductionLadder& ladder, const std
 /// (`relative`), or max_t |x − x_full| (not `relative`, or a sensor constant in the full run).
 double history_error(const std::vector<double>& x, const std::vector<double>& x_full, bool relative);
 
+/// The range max − min of a history (0 for an empty one).
+double history_range(const std::vector<double>& x);
+
 /// Positions in `t` of the full run's output times `t_full` (equal to 1e-9 relative, as output
 /// times are matched elsewhere: io/sensor_schedule.cpp). When a full-run time has no match,
 /// returns an empty vector and says which in `why`.
 std::vector<size_t> matching_times(const std::vector<double>& t, const std::vector<double>& t_full, std::string& why);
+
+/// `study.load`: the load axis of a ladder (issue 19, "where reduction fails"): the whole ladder
+/// runs once per load scale, with the keys multiplied by it.
+struct LoadAxis {
+  /// Places in the scene tree of the numbers to scale ("load.factor", "forces.0.value"), as --set
+  /// names them.
+  std::vector<std::string> keys;
+  /// Their values in the scene (after the study's `set:`): a number or an expression of the
+  /// scene's parameters, or a list of them (a vector).
+  std::vector<YAML::Node> values;
+  std::vector<double> scales;  ///< the factors, increasing
+  bool given() const { return !keys.empty(); }
+};
+
+/// The assignments (as --set takes them) that multiply every key of `axis` by `scale`: a number
+/// becomes the product (17 digits: the same double), an expression e becomes `(e)*scale` (the
+/// scene reader evaluates it with the scene's parameters), a list element by element.
+std::vector<std::string> load_overrides(const LoadAxis& axis, double scale);
 
 /// One variant as the recommendation sees it.
 struct Rung {
@@ -69,8 +90,20 @@ struct Recommendation {
   int lightest = -1;             ///< the acceptable rung of least CPU time (-1: none)
   /// The first rung from which every rung that ran is acceptable (-1: not even the last).
   int acceptable_from = -1;
+  /// The first acceptable rung in the ladder's order, lightest first (-1: none): the load axis's
+  /// "lightest acceptable variant", which unlike `lightest` does not depend on measured CPU times
+  /// (so that one rank and several agree on it).
+  int first_acceptable = -1;
   std::string text;  ///< the printed recommendation
 };
-Recommendation recommend(const std::vector<Rung>& rungs, double tolerance);
+/// `measure`: what the error is, for the printed text.
+Recommendation recommend(const std::vector<Rung>& rungs, double tolerance,
+                         const std::string& measure = "max error over the sensors, relative to each sensor's range in the full run");
+
+/// Where the lightest acceptable variant changes along a load axis: `lightest[i]` is the label of
+/// the lightest acceptable rung at load scale `scales[i]` ("" if none is acceptable there). One
+/// line per change, "lightest acceptable variant changes from `2 modes` to `full` between load
+/// scale 0.003 and 0.01", or one line saying it is the same at every scale.
+std::vector<std::string> load_change_points(const std::vector<double>& scales, const std::vector<std::string>& lightest);
 
 }  // namespace alphaflex::study

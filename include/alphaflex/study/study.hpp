@@ -41,6 +41,8 @@ struct StudyRow {
   double h = std::numeric_limits<double>::quiet_NaN();    ///< step size (s), alphaflex rows
   double tol = std::numeric_limits<double>::quiet_NaN();  ///< tolerance, peer rows and adaptive alphaflex rows
   double t_end = 0.0;
+  /// fidelity with `study.load`: the load scale of the row's run (NaN without a load axis)
+  double load_scale = std::numeric_limits<double>::quiet_NaN();
   bool ok = true;
   std::string failure;               ///< first line of the solver's message when !ok
   long steps = 0, newton_total = 0;
@@ -82,6 +84,11 @@ struct StudyResult {
   /// fidelity with study.tolerance: the printed recommendation, the label of the lightest
   /// acceptable variant and of the first rung from which all are acceptable ("" if none)
   std::string recommendation, recommended, acceptable_from;
+  /// fidelity with `study.load`, per load scale (increasing): the printed recommendation ("" when
+  /// the full rung failed there) and the label of the lightest acceptable rung along the ladder
+  /// ("" if none); and the lines saying where that rung changes (load_change_points).
+  std::vector<double> load_scales;
+  std::vector<std::string> load_recommendations, load_lightest, load_changes;
 };
 
 /// Runs the study. Throws InputError for bad input (a setting's overrides, a reference without the

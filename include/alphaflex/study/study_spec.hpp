@@ -73,6 +73,8 @@ struct StudySpec {
   /// reference is the rung `full`
   bool ladder = false;
   ReductionLadder reduce;
+  /// fidelity with `reduce`: `study.load` given: the ladder runs once per load scale
+  LoadAxis load;
   /// fidelity: the largest acceptable error (max over the sensors, relative to each sensor's range in
   /// the reference run); > 0: the study recommends the lightest variant within it; 0: none given
   double tolerance = 0.0;
@@ -80,6 +82,9 @@ struct StudySpec {
   std::vector<std::string> sensors;  ///< sensors to report (empty: a default per mode)
   std::vector<std::string> overrides;  ///< `set:`: scene overrides for every run, before the settings' own
   bool relative_errors = true;
+  /// fidelity, `errors: largest_range`: every sensor's difference over the largest range of the
+  /// study's sensors in the reference run (one scale for sensors of one quantity)
+  bool largest_range = false;
   bool condition_number = false;     ///< cond(S_t) at the final state of each run
   PeerSpec peers;
   bool plots = true;
