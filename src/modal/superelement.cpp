@@ -629,8 +629,9 @@ void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids
         for (int l = 0; l < m; ++l)
           Qs[static_cast<size_t>(k * m + l)](i, j) = 0.25 * (q(i, j, k, l) + q(j, i, k, l) + q(k, j, i, l) + q(l, j, k, i));
   for (Eigen::MatrixXd& t : Qs) t = 0.5 * (t + t.transpose()).eval();
-  rb.matrices.T = std::move(Ts);
-  rb.matrices.Q = std::move(Qs);
+  // Stored by their unique entries (i ≤ j ≤ k (≤ l)): the symmetrized tensors' entries there.
+  rb.matrices.T = SymmetricTensor(3, m, [&](int i, int j, int k, int) { return Ts[static_cast<size_t>(k)](i, j); });
+  rb.matrices.Q = SymmetricTensor(4, m, [&](int i, int j, int k, int l) { return Qs[static_cast<size_t>(k * m + l)](i, j); });
 }
 
 }  // namespace alphaflex

@@ -720,6 +720,63 @@ TEST(ReducedBodyGeometricStiffness, TangentsMatchFiniteDifferencesAndAD) {
   }
 }
 
+// The packed storage and contraction (SymmetricTensor) against the straightforward evaluation on
+// full arrays: T and Q generic fully symmetric tensors (sums of tensor powers of 5 random vectors,
+// so every entry differs), every entry read back through the packed index, and G₁ = Σₖ T(·,·,k) ξₖ,
+// G₂ = Σₖₗ Q(·,·,k,l) ξₖξₗ and the elastic force K̃ξ + ½T[ξ,ξ] + ⅙Q[ξ,ξ,ξ] summed over all m³ and
+// m⁴ entries: equal to round-off (the sums run in another order). m = 1 and 2 are the edge cases
+// of the multiplicities (all indices equal), 9 a general one.
+TEST(ReducedBodyGeometricStiffness, PackedEvaluationEqualsTheFullTensorsToRoundOff) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const int m : {1, 2, 9}) {
+    std::vector<VectorXd> a(5, VectorXd(m));
+    for (VectorXd& v : a)
+      for (int i = 0; i < m; ++i) v[i] = u(rng);
+    const auto full3 = [&](int i, int j, int k, int) {
+      double t = 0.0;
+      for (const VectorXd& v : a) t += v[i] * v[j] * v[k];
+      return t;
+    };
+    const auto full4 = [&](int i, int j, int k, int l) {
+      double t = 0.0;
+      for (const VectorXd& v : a) t += v[i] * v[j] * v[k] * v[l];
+      return t;
+    };
+    ReducedBodyMatrices d;
+    d.K = MatrixXd::Identity(m, m);
+    d.T = SymmetricTensor(3, m, full3);
+    d.Q = SymmetricTensor(4, m, full4);
+    EXPECT_EQ(d.T.values().size(), static_cast<size_t>(m * (m + 1) * (m + 2) / 6));
+    EXPECT_EQ(d.Q.values().size(), static_cast<size_t>(m * (m + 1) * (m + 2) * (m + 3) / 24));
+    VectorXd xi(m);
+    for (int i = 0; i < m; ++i) xi[i] = u(rng);
+    MatrixXd G1f = MatrixXd::Zero(m, m), G2f = MatrixXd::Zero(m, m);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        for (int k = 0; k < m; ++k) {
+          EXPECT_EQ(d.T(i, j, k), full3(std::min({i, j, k}), i + j + k - std::min({i, j, k}) - std::max({i, j, k}), std::max({i, j, k}), -1))
+              << i << j << k;
+          G1f(i, j) += full3(i, j, k, -1) * xi[k];
+          for (int l = 0; l < m; ++l) {
+            G2f(i, j) += full4(i, j, k, l) * xi[k] * xi[l];
+            int x[4] = {i, j, k, l};
+            std::sort(x, x + 4);
+            EXPECT_EQ(d.Q(i, j, k, l), full4(x[0], x[1], x[2], x[3]));
+          }
+        }
+    const VectorXd ff = xi + 0.5 * G1f * xi + G2f * xi / 6.0;
+    MatrixXd G1, G2;
+    d.geometric_terms(xi, G1, G2);
+    EXPECT_LT((G1 - G1f).norm(), 1e-13 * G1f.norm()) << "m = " << m;
+    EXPECT_LT((G2 - G2f).norm(), 1e-13 * G2f.norm()) << "m = " << m;
+    EXPECT_EQ((G1 - G1.transpose()).norm(), 0.0);
+    EXPECT_EQ((G2 - G2.transpose()).norm(), 0.0);
+    EXPECT_LT((d.elastic_force(xi) - ff).norm(), 1e-13 * ff.norm()) << "m = " << m;
+  }
+  EXPECT_THROW(SymmetricTensor(2, 3, [](int, int, int, int) { return 0.0; }), std::invalid_argument);
+}
+
 // All modes and small motions still give the full linear model: at rest (ξ = 0) T[ξ] and Q[ξ,ξ]
 // vanish, so the body's r, K, C, M with geometric stiffness equal those without (bit for bit: the
 // added terms are exact zeros), which AllModesKeptReproduceTheFullLinearModelAtRest compares with
@@ -728,7 +785,7 @@ TEST(ReducedBodyGeometricStiffness, AtRestTheLinearizationIsUnchanged) {
   ReducedBar rb(24, -1);
   const ReducedBodyMatrices linear = rb.rb.matrices;
   nonlinear_stiffness(rb.bar.model, rb.bar.elements, rb.block, rb.rb);
-  ASSERT_EQ(rb.rb.matrices.T.size(), 24u);
+  ASSERT_EQ(rb.rb.matrices.T.dim(), 24);
   const int m = 24, n = 6 + m;
   std::vector<int> coords;
   for (int i = 0; i < m; ++i) coords.push_back(1 + i);

@@ -112,8 +112,8 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
                           int modes, bool inertia_modes = false);
 
 /// The cubic and quartic terms of the block's elastic energy along the basis of `rb`
-/// (docs/theory/reduced_bodies.md, "Geometric stiffness"), stored in rb.matrices.T and .Q:
-/// T[k](i, j) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ, Q[k·m + l](i, j) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ at ξ = 0, U(ξ) the energy of the
+/// (docs/theory/reduced_bodies.md, "Geometric stiffness"), stored in rb.matrices.T and .Q (their
+/// unique entries): T(i, j, k) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ, Q(i, j, k, l) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ at ξ = 0, U(ξ) the energy of the
 /// block's own (nonlinear) elements `element_ids` at the poses ReducedBlock::node_pose gives (frame
 /// at its initial pose). Computed once, by central second and third differences of the projected
 /// internal force f̃ᵢ(ξ) = ∂U/∂ξᵢ (exact: the nodes' forces times the derivative of node_pose, with
