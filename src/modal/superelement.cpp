@@ -512,6 +512,16 @@ void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids
   double size = 0.0;
   for (const Eigen::Vector3d& X : rb.positions) size = std::max(size, X.norm());
   if (size <= 0.0) size = 1.0;
+  // Each element's configuration entries in the state and its residual's rows in the block.
+  std::vector<std::vector<int>> confs, rows;
+  for (int e : element_ids) {
+    const Element& el = *model.elements()[static_cast<size_t>(e)];
+    confs.push_back(model.confs_of(el.nodes()));
+    rows.emplace_back();
+    for (int node : el.nodes())
+      for (int c = 0; c < model.node(node).ndof; ++c) rows.back().push_back(block.row_of(node, c));
+  }
+  const Eigen::Index block_rows = static_cast<Eigen::Index>(block.offsets.back() + model.node(block.nodes.back()).ndof);
   // f̃(ξ) = Σₐ (R_f Φᵗₐ)ᵀ fₓ,ₐ + (T(φₐ) Φʳₐ)ᵀ f_θ,ₐ: the block's internal forces at the nodes
   // (δx world, δθ node frame, as BlockMatrices) through the derivative of node_pose.
   const auto projected_force = [&](const Eigen::VectorXd& xi) {
@@ -529,17 +539,21 @@ void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids
       s.q[conf[a] + 5] = qa.y();
       s.q[conf[a] + 6] = qa.z();
     }
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(block.K.rows()));
-    LocalResidual out;
-    for (int e : element_ids) {
-      const Element& el = *model.elements()[static_cast<size_t>(e)];
-      LocalState ls = model.local_state(el, s);
-      ls.load_factor = 0.0;  // the elastic force alone: no applied load, no gravity
-      out.reset(static_cast<int>(ls.v.size()), false);
-      el.evaluate(ls, out, false);
-      int k = 0;
-      for (int node : el.nodes())
-        for (int c = 0; c < model.node(node).ndof; ++c) f[block.row_of(node, c)] += out.r[k++];
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(block_rows));
+    Eigen::VectorXd r;
+    for (size_t b = 0; b < element_ids.size(); ++b) {
+      const Element& el = *model.elements()[static_cast<size_t>(element_ids[b])];
+      // The elastic force alone (Element::internal_force: no inertia terms, which vanish at rest
+      // but cost most of a beam's evaluation); an element without it, evaluated whole at rest.
+      if (!el.internal_force(gather(s.q, confs[b]), r)) {
+        LocalState ls = model.local_state(el, s);
+        ls.load_factor = 0.0;  // no applied load, no gravity
+        LocalResidual out;
+        out.reset(static_cast<int>(ls.v.size()), false);
+        el.evaluate(ls, out, false);
+        r = out.r;
+      }
+      for (size_t k = 0; k < rows[b].size(); ++k) f[rows[b][k]] += r[static_cast<Eigen::Index>(k)];
     }
     Eigen::VectorXd ft = Eigen::VectorXd::Zero(m);
     for (size_t a = 0; a < nn; ++a) {

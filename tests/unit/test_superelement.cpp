@@ -777,6 +777,42 @@ TEST(ReducedBodyGeometricStiffness, PackedEvaluationEqualsTheFullTensorsToRoundO
   EXPECT_THROW(SymmetricTensor(2, 3, [](int, int, int, int) { return 0.0; }), std::invalid_argument);
 }
 
+// nonlinear_stiffness differentiates the elements' internal forces alone (Element::internal_force)
+// where they offer them, else it evaluates them whole at rest: the same bar's T and Q both ways —
+// the beams as they are, and wrapped in an element that offers only evaluate() — bit for bit.
+class EvaluateOnly final : public Element {
+ public:
+  explicit EvaluateOnly(std::unique_ptr<Element> inner) : Element(inner->name(), inner->nodes()), inner_(std::move(inner)) {}
+  const char* type() const override { return "evaluate_only"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<EvaluateOnly>(inner_->renumbered(nodes())); }
+  void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override { inner_->evaluate(s, out, tangent); }
+
+ private:
+  std::shared_ptr<const Element> inner_;
+};
+
+TEST(ReducedBodyGeometricStiffness, InternalForcesAloneGiveTheSameTensorsBitForBit) {
+  ReducedBar rb(3, 4);
+  Model wrapped;
+  for (const Node& nd : rb.bar.model.nodes()) wrapped.add_node(nd);
+  for (int e : rb.bar.elements) {
+    const Element& el = *rb.bar.model.elements()[static_cast<size_t>(e)];
+    VectorXd r;
+    ASSERT_TRUE(el.internal_force(rb.bar.model.initial_state().q.head(14), r));  // the beams offer it
+    wrapped.add_element(std::make_unique<EvaluateOnly>(el.renumbered(el.nodes())));
+  }
+  ReducedBlock direct = rb.rb, whole = rb.rb;
+  nonlinear_stiffness(rb.bar.model, rb.bar.elements, rb.block, direct);
+  nonlinear_stiffness(wrapped, rb.bar.elements, rb.block, whole);
+  ASSERT_EQ(direct.matrices.T.values().size(), whole.matrices.T.values().size());
+  ASSERT_EQ(direct.matrices.Q.values().size(), whole.matrices.Q.values().size());
+  EXPECT_TRUE(direct.matrices.T.values() == whole.matrices.T.values());
+  EXPECT_TRUE(direct.matrices.Q.values() == whole.matrices.Q.values());
+  double big = 0.0;
+  for (double t : direct.matrices.T.values()) big = std::max(big, std::abs(t));
+  EXPECT_GT(big, 0.0);  // the constraint modes carry the stretch: T is not zero here
+}
+
 // All modes and small motions still give the full linear model: at rest (ξ = 0) T[ξ] and Q[ξ,ξ]
 // vanish, so the body's r, K, C, M with geometric stiffness equal those without (bit for bit: the
 // added terms are exact zeros), which AllModesKeptReproduceTheFullLinearModelAtRest compares with

@@ -116,8 +116,9 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
 /// unique entries): T(i, j, k) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ, Q(i, j, k, l) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ at ξ = 0, U(ξ) the energy of the
 /// block's own (nonlinear) elements `element_ids` at the poses ReducedBlock::node_pose gives (frame
 /// at its initial pose). Computed once, by central second and third differences of the projected
-/// internal force f̃ᵢ(ξ) = ∂U/∂ξᵢ (exact: the nodes' forces times the derivative of node_pose, with
-/// the tangent operator of exp for the rotations), stencils whose even (second) or odd (third)
+/// internal force f̃ᵢ(ξ) = ∂U/∂ξᵢ (exact: the nodes' forces — Element::internal_force, the elastic
+/// force alone, where the elements offer it (beams, shells); else evaluate() at rest — times the
+/// derivative of node_pose, with the tangent operator of exp for the rotations), stencils whose even (second) or odd (third)
 /// terms cancel: error O(h²), h = 10⁻³ of the block's size in each direction's largest
 /// displacement; 2m² + 4m³/3 block evaluations. Both are made fully symmetric; `asymmetry` (if
 /// given) receives T's max |T − T_sym| / max |T| before (a check of the differences). Throws
