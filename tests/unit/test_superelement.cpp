@@ -223,6 +223,32 @@ TEST(CraigBampton, SparsePathEqualsDensePathOnAMidSizeBlock) {
   EXPECT_EQ(craig_bampton(K, M, tip, 8).T, sparse.T);
 }
 
+// The block's sparse K and M (from the elements' triplets) hold the dense assembly's numbers bit
+// for bit — every entry, and no stored exact zero — and an assembly without the dense copies
+// gives the same sparse matrices and the same reduction (the scene's path, reduced_beams_3d.cpp).
+TEST(AssembleBlock, SparseEqualsTheDenseAssemblyBitForBit) {
+  const Bar bar = straight_bar(5, 0.7, Vector3d(0.1, -0.2, 0.3), Vector3d(2.0, 1.0, 0.5).normalized());
+  const BlockMatrices both = assemble_block(bar.model, bar.elements), sparse = assemble_block(bar.model, bar.elements, false);
+  ASSERT_EQ(both.size(), 36);
+  for (const auto& [S, D] : {std::pair{&both.K_sparse, &both.K}, std::pair{&both.M_sparse, &both.M}}) {
+    ASSERT_EQ(D->rows(), 36);
+    EXPECT_EQ((MatrixXd(*S) - *D).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(S->nonZeros(), (D->array() != 0.0).count());
+    for (int k = 0; k < S->outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(*S, k); it; ++it) EXPECT_NE(it.value(), 0.0);
+  }
+  EXPECT_EQ(sparse.K.size(), 0);
+  EXPECT_EQ(sparse.M.size(), 0);
+  EXPECT_EQ((MatrixXd(sparse.K_sparse) - both.K).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((MatrixXd(sparse.M_sparse) - both.M).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(sparse.nodes, both.nodes);
+  EXPECT_EQ(sparse.offsets, both.offsets);
+  const ReducedBlock a = reduce_block(bar.model, both, 0, {5}, 4, true), b = reduce_block(bar.model, sparse, 0, {5}, 4, true);
+  EXPECT_EQ((a.matrices.K - b.matrices.K).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((a.matrices.M0 - b.matrices.M0).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((a.superelement.T - b.superelement.T).cwiseAbs().maxCoeff(), 0.0);
+}
+
 TEST(RigidMassProperties, UniformBarHasTheTextbookMassCentreAndInertia) {
   const Vector3d start(0.1, -0.2, 0.3), axis = Vector3d(2.0, 1.0, 0.5).normalized();
   const Bar bar = straight_bar(5, 0.8, start, axis);
