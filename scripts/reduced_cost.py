@@ -23,8 +23,19 @@ sensor (the issue's measure).
 
 Example (~1 min of CPU):
   /usr/bin/python3 scripts/reduced_cost.py --exe build/alphaflex --doc reduced_cost
+
+With --study, the ladder of a fidelity study instead (`alphaflex study SCENE --study FILE`, e.g.
+the slider-crank's rod or the four-bar's links refined with --set mesh.elements=N): the study is
+run for each variant of the reduced rungs — `linear` (geometric_stiffness off, static_modes none)
+and `geometric` (geometric_stiffness on, static_modes inertia) — alternating, --rounds times; the
+CPU of each rung is the run's own (the study's `cpu` column: run_simulation only, without the scene
+build and the one-off reduction), the least over the rounds, and the ratio is the full rung's CPU
+(same study run set) over the rung's. Errors are the study's (max over the sensors of
+max |rung - full| / the full run's range), identical in every round.
+  /usr/bin/python3 scripts/reduced_cost.py --exe build/alphaflex --study inputs/studies/slider_crank_reduction.yaml \
+      --scene inputs/slider_crank_flexible_3d.yaml --set mesh.elements=85 --ladder 2,4,8
 """
-import argparse, csv, os, re, subprocess, sys, tempfile
+import argparse, csv, os, re, subprocess, sys, tempfile, time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -57,8 +68,72 @@ def error(ref, x, key):
     return max(abs(p - q) for p, q in zip(ref[key], x[key])) / rng
 
 
+VARIANTS = {
+    "linear": ["--study-set", "reduce.geometric_stiffness=off", "--study-set", "reduce.static_modes=none"],
+    "geometric": ["--study-set", "reduce.geometric_stiffness=on", "--study-set", "reduce.static_modes=inertia"],
+}
+
+
+def run_study(a, out, variant):
+    ladder = "[" + ", ".join(a.ladder.split(",") + ["full"]) + "]"
+    cmd = [a.exe, "study", a.scene, "--study", a.study, "-o", out, "--study-set", f"reduce.ladder={ladder}"]
+    for s in a.set or []:
+        cmd += ["--set", s]
+    cmd += VARIANTS[variant]
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    if done.returncode != 0:
+        sys.exit("failed: " + " ".join(cmd) + "\n" + done.stdout + done.stderr)
+    name = [f for f in os.listdir(out) if f.endswith("_study.csv")][0]
+    with open(os.path.join(out, name)) as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    return {r["label"]: dict(cpu=float(r["cpu"]), err=float(r["err_max"]), newton=float(r["newton_mean"]),
+                             unknowns=int(r["unknowns"])) for r in rows}
+
+
+def study_main(a):
+    variants = a.variants.split(",")
+    res = {v: [] for v in variants}
+    loads = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for r in range(a.rounds):
+            for v in variants:
+                loads.append(os.getloadavg()[0])
+                res[v].append(run_study(a, f"{tmp}/{v}{r}", v))
+    labels = list(res[variants[0]][0])
+    best = {v: {l: min(x[l]["cpu"] for x in res[v]) for l in labels} for v in variants}
+    head = "| rung |" + "".join(f" {v}: unknowns | Newton/step | max error | CPU (s) | full ÷ rung |" for v in variants)
+    lines = [f"{os.path.relpath(os.path.abspath(a.scene), ROOT)} {' '.join(a.set or [])}, study {os.path.relpath(os.path.abspath(a.study), ROOT)}; "
+             f"least CPU of {a.rounds} alternating rounds (the study's run CPU); load average "
+             f"{min(loads):.1f}-{max(loads):.1f} on {os.cpu_count()} cores, {time.strftime('%Y-%m-%d')}.", "", head,
+             "|---|" + "---|---|---|---|---|" * len(variants)]
+    for l in labels:
+        row = f"| {l} |"
+        for v in variants:
+            x = res[v][0][l]
+            row += f" {x['unknowns']} | {x['newton']:.2f} | {x['err']:.2e} | {best[v][l]:.3f} | {best[v]['full'] / best[v][l]:.1f} |"
+        lines.append(row)
+    text = "\n".join(lines)
+    print(text)
+    return text
+
+
+def write_doc(name, text):
+    path = os.path.join(ROOT, "docs/benchmarks/reduced.md")
+    doc = open(path).read()
+    begin, end = f"<!-- {name}: begin -->", f"<!-- {name}: end -->"
+    if begin not in doc or end not in doc:
+        sys.exit(f"{path}: no markers {begin} ... {end}")
+    head, rest = doc.split(begin, 1)
+    doc = head + begin + "\n" + text + "\n" + end + rest.split(end, 1)[1]
+    open(path, "w").write(doc)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--study", help="a fidelity study file: run its ladder instead (see above)")
+    p.add_argument("--set", action="append", help="with --study: a scene --set (repeatable), e.g. mesh.elements=85")
+    p.add_argument("--ladder", default="2,4,8", help="with --study: the reduced rungs (the full rung is added)")
+    p.add_argument("--variants", default="linear,geometric", help="with --study: linear, geometric or both")
     p.add_argument("--exe", required=True)
     p.add_argument("--scene", default=os.path.join(ROOT, "tests/cli/reduced_pendulum.yaml"))
     p.add_argument("--elements", type=int, default=170)
@@ -69,6 +144,11 @@ def main():
     p.add_argument("--sensors", nargs="+", default=["angle", "fx"])
     p.add_argument("--doc", help="write the table between <!-- NAME: begin --> and <!-- NAME: end --> of docs/benchmarks/reduced.md")
     a = p.parse_args()
+    if a.study:
+        text = study_main(a)
+        if a.doc:
+            write_doc(a.doc, text)
+        return
     reduction = ["--set", f"beams.0.reduction={{method: craig_bampton, modes: {a.modes}, interface: [root]}}"]
     variants = {"full": [], "reduced": reduction}
     timing = ["--set", f"solver.h={a.h}"]
@@ -113,14 +193,7 @@ def main():
     text = "\n".join(lines)
     print(text)
     if a.doc:
-        path = os.path.join(ROOT, "docs/benchmarks/reduced.md")
-        doc = open(path).read()
-        begin, end = f"<!-- {a.doc}: begin -->", f"<!-- {a.doc}: end -->"
-        if begin not in doc or end not in doc:
-            sys.exit(f"{path}: no markers {begin} ... {end}")
-        head, rest = doc.split(begin, 1)
-        doc = head + begin + "\n" + text + "\n" + end + rest.split(end, 1)[1]
-        open(path, "w").write(doc)
+        write_doc(a.doc, text)
 
 
 if __name__ == "__main__":

@@ -2,6 +2,7 @@
 #include "alphaflex/elements/reduced_body.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <unsupported/Eigen/AutoDiff>
 
@@ -64,14 +65,73 @@ V3<S> cross(const V3<S>& a, const V3<S>& b) {
 
 Eigen::MatrixXd ReducedBodyMatrices::mass_matrix(const Eigen::VectorXd& xi) const { return mass_of<double>(*this, xi); }
 
+namespace {
+// Nondecreasing sequences of length `len` over `n` values: C(n + len − 1, len).
+size_t multisets(int n, int len) {
+  double c = 1.0;
+  for (int i = 1; i <= len; ++i) c = c * (n + i - 1) / i;
+  return static_cast<size_t>(std::llround(c));
+}
+}  // namespace
+
+SymmetricTensor::SymmetricTensor(int order, int dim) : order_(order), dim_(dim) {
+  if ((order != 3 && order != 4) || dim < 0)
+    throw std::invalid_argument("symmetric tensor: order " + std::to_string(order) + " on " + std::to_string(dim) +
+                                " indices (order 3 or 4 expected)");
+  values_.assign(multisets(dim, order), 0.0);
+}
+
+double SymmetricTensor::operator()(int i, int j, int k, int l) const {
+  int x[4] = {i, j, k, l};
+  std::sort(x, x + order_);
+  // Lexicographic rank among the nondecreasing tuples: at each position p, the tuples that agree
+  // before p and have a smaller value v there, with the rest ≥ v.
+  size_t rank = 0;
+  for (int p = 0, lo = 0; p < order_; lo = x[p], ++p)
+    for (int v = lo; v < x[p]; ++v) rank += multisets(dim_ - v, order_ - p - 1);
+  return values_[rank];
+}
+
+void SymmetricTensor::plan() {
+  const int m = dim_, P = m * (m + 1) / 2;
+  pairs_.resize(P, order_ == 3 ? m : P);
+  for (int p = 0, a = 0; p < m; ++p)
+    for (int q = p; q < m; ++q, ++a) {
+      if (order_ == 3) {
+        for (int k = 0; k < m; ++k) pairs_(a, k) = (*this)(p, q, k);
+      } else {
+        for (int k = 0, b = 0; k < m; ++k)
+          for (int l = k; l < m; ++l, ++b) pairs_(a, b) = (k == l ? 1.0 : 2.0) * (*this)(p, q, k, l);
+      }
+    }
+}
+
+void SymmetricTensor::contract_into(const Eigen::VectorXd& x, Eigen::MatrixXd& G) const {
+  const int m = dim_;
+  Eigen::VectorXd u;
+  if (order_ == 3) {
+    u.noalias() = pairs_ * x;
+  } else {
+    Eigen::VectorXd z(pairs_.cols());  // xₖxₗ, k ≤ l
+    for (int k = 0, b = 0; k < m; ++k)
+      for (int l = k; l < m; ++l, ++b) z[b] = x[k] * x[l];
+    u.noalias() = pairs_ * z;
+  }
+  for (int p = 0, a = 0; p < m; ++p) {
+    G(p, p) += u[a++];
+    for (int q = p + 1; q < m; ++q, ++a) {
+      G(p, q) += u[a];
+      G(q, p) += u[a];
+    }
+  }
+}
+
 void ReducedBodyMatrices::geometric_terms(const Eigen::VectorXd& xi, Eigen::MatrixXd& G1, Eigen::MatrixXd& G2) const {
   const int m = elastic();
   G1 = Eigen::MatrixXd::Zero(m, m);
   G2 = Eigen::MatrixXd::Zero(m, m);
-  for (size_t k = 0; k < T.size(); ++k) G1 += xi[static_cast<Eigen::Index>(k)] * T[k];  // O(m³)
-  if (!Q.empty())
-    for (int k = 0; k < m; ++k)
-      for (int l = 0; l < m; ++l) G2 += (xi[k] * xi[l]) * Q[static_cast<size_t>(k * m + l)];  // O(m⁴)
+  if (!T.empty()) T.contract_into(xi, G1);  // ~m³/2 products
+  if (!Q.empty()) Q.contract_into(xi, G2);  // ~m⁴/4 products
 }
 
 Eigen::VectorXd ReducedBodyMatrices::elastic_force(const Eigen::VectorXd& xi) const {
@@ -88,21 +148,11 @@ void ReducedBodyMatrices::check() const {
     if (c.rows() != 3 || c.cols() != n) throw std::invalid_argument("reduced body: a coupling matrix is not 3 x (6 + m)");
   if ((M0 - M0.transpose()).norm() > 1e-12 * M0.norm() || (K - K.transpose()).norm() > 1e-12 * (K.norm() + 1e-300))
     throw std::invalid_argument("reduced body: M0 and K must be symmetric");
-  if (!T.empty()) {
-    if (static_cast<int>(T.size()) != m)
-      throw std::invalid_argument("reduced body: the geometric stiffness has " + std::to_string(T.size()) + " slices for " +
-                                  std::to_string(m) + " elastic coordinates");
-    for (const Eigen::MatrixXd& t : T)
-      if (t.rows() != m || t.cols() != m || (t - t.transpose()).norm() > 1e-12 * (t.norm() + 1e-300))
-        throw std::invalid_argument("reduced body: a geometric stiffness slice is not a symmetric m x m matrix");
-  }
-  if (!Q.empty()) {
-    if (T.empty() || static_cast<int>(Q.size()) != m * m)
-      throw std::invalid_argument("reduced body: the quartic stiffness needs the cubic one and m^2 slices");
-    for (const Eigen::MatrixXd& t : Q)
-      if (t.rows() != m || t.cols() != m || (t - t.transpose()).norm() > 1e-12 * (t.norm() + 1e-300))
-        throw std::invalid_argument("reduced body: a quartic stiffness slice is not a symmetric m x m matrix");
-  }
+  if (!T.empty() && (T.order() != 3 || T.dim() != m))
+    throw std::invalid_argument("reduced body: the geometric stiffness is of order " + std::to_string(T.order()) + " on " +
+                                std::to_string(T.dim()) + " indices for " + std::to_string(m) + " elastic coordinates (order 3 expected)");
+  if (!Q.empty() && (T.empty() || Q.order() != 4 || Q.dim() != m))
+    throw std::invalid_argument("reduced body: the quartic stiffness needs the cubic one and order 4 on the elastic coordinates");
   // M₂ᵢⱼ = DᵢᵀM̄Dⱼ, so M₂ᵢⱼᵀ = M₂ⱼᵢ: 𝕄's quadratic part is symmetric (the closed-form tangent uses it).
   double scale = 0.0, asym = 0.0;
   for (int i = 0; i < m; ++i)
@@ -163,14 +213,16 @@ Eigen::Matrix<S, Eigen::Dynamic, 1> ReducedBody::residual(const Eigen::Matrix<S,
   for (int i = 0; i < m; ++i) {
     S k = S(0.0);
     for (int j = 0; j < m; ++j) k += m_.K(i, j) * xi[j];
-    // Geometric stiffness: ∂(⅙ T[ξ,ξ,ξ])/∂ξᵢ = ½ Σⱼₖ T[k](i, j) ξⱼ ξₖ.
-    for (size_t kk = 0; kk < m_.T.size(); ++kk)
-      for (int j = 0; j < m; ++j) k += 0.5 * m_.T[kk](i, j) * xi[j] * xi[static_cast<Eigen::Index>(kk)];
-    // Quartic term: ⅙ Σⱼₖₗ Q[k·m + l](i, j) ξⱼ ξₖ ξₗ.
+    // Geometric stiffness: ∂(⅙ T[ξ,ξ,ξ])/∂ξᵢ = ½ Σⱼₖ T(i, j, k) ξⱼ ξₖ — every entry of the full
+    // tensor, read through the packed storage: the reference the packed contraction is tested on.
+    if (!m_.T.empty())
+      for (int kk = 0; kk < m; ++kk)
+        for (int j = 0; j < m; ++j) k += 0.5 * m_.T(i, j, kk) * xi[j] * xi[kk];
+    // Quartic term: ⅙ Σⱼₖₗ Q(i, j, k, l) ξⱼ ξₖ ξₗ.
     if (!m_.Q.empty())
       for (int kk = 0; kk < m; ++kk)
         for (int l = 0; l < m; ++l)
-          for (int j = 0; j < m; ++j) k += (1.0 / 6.0) * m_.Q[static_cast<size_t>(kk * m + l)](i, j) * xi[j] * xi[kk] * xi[l];
+          for (int j = 0; j < m; ++j) k += (1.0 / 6.0) * m_.Q(i, j, kk, l) * xi[j] * xi[kk] * xi[l];
     r[6 + i] += hd[6 + i] + k;
   }
   return r;
@@ -226,7 +278,7 @@ void ReducedBody::evaluate(const LocalState& s, LocalResidual& out, bool tangent
   out.r.head<3>() += R * y;
   out.r.segment<3>(3) += hd.segment<3>(3) + om.cross(hw) + u.cross(hu);
   out.r.tail(m) += hd.tail(m) - 0.5 * Aw.transpose() * w + m_.K * xi;
-  // Geometric stiffness (header): force ½ T[ξ,ξ] = ½ G ξ, tangent G = T[ξ]; O(m³), only when asked.
+  // Geometric stiffness (header): force (½ G₁ + ⅙ G₂) ξ, tangent G₁ + ½ G₂, from the packed tensors.
   MatrixXd G1, G2;
   if (!m_.T.empty()) {
     m_.geometric_terms(xi, G1, G2);

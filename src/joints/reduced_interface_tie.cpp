@@ -38,21 +38,33 @@ Pose<Along> moving(const Pose<double>& p, const Eigen::Vector3d& vx, const Eigen
   return out;
 }
 
-/// Φ and ∂Φ/∂(δ_B, δ_f, z) (6 × 18) by AD1.
+/// Φ and ∂Φ/∂(δ_B, δ_f, z) (6 × 18) in closed form: d = x_B − x_f − R_f(X_a + u) and
+/// aᵢ·bⱼ, aᵢ = R_a eᵢ, R_a = R_f C, C = R̄_a exp(ψ̂), bⱼ = R_B eⱼ. With δx in world axes and
+/// R → R exp(δθ̂) (so δ(R w) = −R ŵ δθ) and exp(ψ + δψ) = exp(ψ) exp((T(ψ)δψ)^):
+///   ∂d/∂(δx_B, δx_f, δθ_f, u) = (I, −I, R_f (X_a + u)^, −R_f),
+///   ∂(aᵢ·bⱼ)/∂δθ_B = (eⱼ × R_Bᵀaᵢ)ᵀ, ∂/∂δθ_f = (Ceᵢ × R_fᵀbⱼ)ᵀ, ∂/∂ψ = (eᵢ × R_aᵀbⱼ)ᵀ T(ψ)
+/// (−vᵀŵ = (w × v)ᵀ). The values by the scalar-generic `equations` in double (the AD path's value
+/// part to a few ulps). The
+/// AD1 Jacobian it replaces cost ~25 % of a reduced slider-crank's run (docs/benchmarks/reduced.md);
+/// test_reduced_interface_tie.cpp compares the two.
 void first(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z, Eigen::VectorXd& phi,
            Eigen::Matrix<double, 6, kVars>& J) {
-  const Pose<A1> bs = kernel_detail::seeded_pose1<kVars>(b, 0), fs = kernel_detail::seeded_pose1<kVars>(f, 6);
-  Vec3<A1> u, psi;
-  for (int i = 0; i < 3; ++i) {
-    u[i] = A1(z[i], A1::DerType::Unit(12 + i));
-    psi[i] = A1(z[3 + i], A1::DerType::Unit(15 + i));
-  }
-  std::array<A1, 6> out;
-  tie.equations(bs, fs, u, psi, out.data());
+  const Eigen::Vector3d u = z.head<3>(), psi = z.tail<3>();
   phi.resize(6);
-  for (int i = 0; i < 6; ++i) {
-    phi[i] = out[static_cast<size_t>(i)].value();
-    J.row(i) = out[static_cast<size_t>(i)].derivatives().transpose();
+  tie.equations<double>(b, f, u, psi, phi.data());
+  const Eigen::Matrix3d C = tie.rotation() * exp_so3<double>(psi), Ra = f.R * C, Tpsi = tangent_so3<double>(psi);
+  J.setZero();
+  J.block<3, 3>(0, 0).setIdentity();
+  J.block<3, 3>(0, 6) = -Eigen::Matrix3d::Identity();
+  J.block<3, 3>(0, 9) = f.R * hat<double>(Eigen::Vector3d(tie.position() + u));
+  J.block<3, 3>(0, 12) = -f.R;
+  const int pair[3][2] = {{1, 2}, {2, 0}, {0, 1}};  // rows 3–5: a₂·b₃, a₃·b₁, a₁·b₂
+  for (int r = 0; r < 3; ++r) {
+    const int i = pair[r][0], j = pair[r][1];
+    const Eigen::Vector3d ei = Eigen::Vector3d::Unit(i), ej = Eigen::Vector3d::Unit(j);
+    J.block<1, 3>(3 + r, 3) = ej.cross(b.R.transpose() * Ra.col(i)).transpose();
+    J.block<1, 3>(3 + r, 9) = C.col(i).cross(f.R.transpose() * b.R.col(j)).transpose();
+    J.block<1, 3>(3 + r, 15) = ei.cross(Ra.transpose() * b.R.col(j)).transpose() * Tpsi;
   }
 }
 

@@ -25,7 +25,7 @@ int BlockMatrices::row_of(int node, int k) const {
   return offsets[static_cast<size_t>(it - nodes.begin())] + k;
 }
 
-BlockMatrices assemble_block(const Model& model, const std::vector<int>& element_ids) {
+BlockMatrices assemble_block(const Model& model, const std::vector<int>& element_ids, bool dense) {
   if (element_ids.empty()) throw std::invalid_argument("assemble_block: the block has no elements");
   BlockMatrices b;
   for (int e : element_ids)
@@ -37,14 +37,13 @@ BlockMatrices assemble_block(const Model& model, const std::vector<int>& element
     b.offsets.push_back(n);
     n += model.node(id).ndof;
   }
-  b.K = Eigen::MatrixXd::Zero(n, n);
-  b.M = Eigen::MatrixXd::Zero(n, n);
   // The undeformed state at rest: K is the linear (material) stiffness, M the consistent mass;
   // velocity-dependent terms vanish (Ω = 0), so the linearization is the block's linear model.
   MechanicalState s = model.initial_state();
   s.v.setZero();
   s.qdd.setZero();
   LocalResidual out;
+  std::vector<Eigen::Triplet<double>> tk, tm;
   for (int e : element_ids) {
     const Element& el = *model.elements()[static_cast<size_t>(e)];
     const LocalState ls = model.local_state(el, s);
@@ -55,10 +54,23 @@ BlockMatrices assemble_block(const Model& model, const std::vector<int>& element
       for (int k = 0; k < model.node(node).ndof; ++k) rows.push_back(b.row_of(node, k));
     for (size_t i = 0; i < rows.size(); ++i)
       for (size_t j = 0; j < rows.size(); ++j) {
-        b.K(rows[i], rows[j]) += out.K(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
-        b.M(rows[i], rows[j]) += out.M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+        tk.emplace_back(rows[i], rows[j], out.K(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
+        tm.emplace_back(rows[i], rows[j], out.M(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
       }
   }
+  // setFromTriplets sums the duplicates of an entry in the triplets' order, as the dense sums
+  // below do (from 0, and 0 + a = a exactly): both hold the same numbers. Exact zeros (a coupling
+  // the element's kernel leaves empty) are dropped, as from a dense matrix's sparse view.
+  const auto assemble = [&](const std::vector<Eigen::Triplet<double>>& t, Eigen::SparseMatrix<double>& A, Eigen::MatrixXd& D) {
+    A.resize(n, n);
+    A.setFromTriplets(t.begin(), t.end());
+    A.prune(0.0, 0.0);
+    if (!dense) return;
+    D = Eigen::MatrixXd::Zero(n, n);
+    for (const Eigen::Triplet<double>& x : t) D(x.row(), x.col()) += x.value();
+  };
+  assemble(tk, b.K_sparse, b.K);
+  assemble(tm, b.M_sparse, b.M);
   return b;
 }
 
@@ -418,7 +430,7 @@ Superelement herting(const SparseMatrix& K, const SparseMatrix& M, const std::ve
 }
 
 RigidMassProperties rigid_mass_properties(const Model& model, const BlockMatrices& block) {
-  const int n = static_cast<int>(block.K.rows());
+  const int n = block.size();
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, 6);
   for (size_t a = 0; a < block.nodes.size(); ++a) {
     const Node& nd = model.node(block.nodes[a]);
@@ -430,7 +442,7 @@ RigidMassProperties rigid_mass_properties(const Model& model, const BlockMatrice
     G.block<3, 3>(o, 3) = -hat(p.x);
     G.block<3, 3>(o + 3, 3) = p.R.transpose();
   }
-  const Eigen::MatrixXd R = G.transpose() * block.M * G;
+  const Eigen::MatrixXd R = G.transpose() * (block.M_sparse * G);
   RigidMassProperties mp;
   mp.mass = R.topLeftCorner<3, 3>().trace() / 3.0;
   if (!(mp.mass > 0.0)) throw std::invalid_argument("rigid_mass_properties: the block has no mass");
@@ -521,7 +533,7 @@ void add_inertia_modes(const Model& model, const BlockMatrices& block, int frame
 
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
                           int modes, bool inertia_modes, Reduction method) {
-  const int n = static_cast<int>(block.K.rows());
+  const int n = block.size();
   if (block.row_of(frame_node) < 0)
     throw std::invalid_argument("the interface point '" + model.node(frame_node).name + "' is not a node of the block");
   for (int id : block.nodes)
@@ -543,7 +555,8 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
   }
   // The block's matrices are sparse (a node couples to its elements' nodes only): everything below
   // works on their nonzeros, O(n · bandwidth · m), not O(n³).
-  const SparseMatrix Ks = block.K.sparseView(0.0, 0.0), Ms = block.M.sparseView(0.0, 0.0);
+  const SparseMatrix& Ks = block.K_sparse;
+  const SparseMatrix& Ms = block.M_sparse;
   const SparseMatrix Kc = submatrix(Ks, keep, keep), Mc = submatrix(Ms, keep, keep);
   const int nk = static_cast<int>(keep.size());
   ReducedBlock rb;
@@ -653,6 +666,16 @@ void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids
   double size = 0.0;
   for (const Eigen::Vector3d& X : rb.positions) size = std::max(size, X.norm());
   if (size <= 0.0) size = 1.0;
+  // Each element's configuration entries in the state and its residual's rows in the block.
+  std::vector<std::vector<int>> confs, rows;
+  for (int e : element_ids) {
+    const Element& el = *model.elements()[static_cast<size_t>(e)];
+    confs.push_back(model.confs_of(el.nodes()));
+    rows.emplace_back();
+    for (int node : el.nodes())
+      for (int c = 0; c < model.node(node).ndof; ++c) rows.back().push_back(block.row_of(node, c));
+  }
+  const Eigen::Index block_rows = static_cast<Eigen::Index>(block.offsets.back() + model.node(block.nodes.back()).ndof);
   // f̃(ξ) = Σₐ (R_f Φᵗₐ)ᵀ fₓ,ₐ + (T(φₐ) Φʳₐ)ᵀ f_θ,ₐ: the block's internal forces at the nodes
   // (δx world, δθ node frame, as BlockMatrices) through the derivative of node_pose.
   const auto projected_force = [&](const Eigen::VectorXd& xi) {
@@ -670,17 +693,21 @@ void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids
       s.q[conf[a] + 5] = qa.y();
       s.q[conf[a] + 6] = qa.z();
     }
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(block.K.rows()));
-    LocalResidual out;
-    for (int e : element_ids) {
-      const Element& el = *model.elements()[static_cast<size_t>(e)];
-      LocalState ls = model.local_state(el, s);
-      ls.load_factor = 0.0;  // the elastic force alone: no applied load, no gravity
-      out.reset(static_cast<int>(ls.v.size()), false);
-      el.evaluate(ls, out, false);
-      int k = 0;
-      for (int node : el.nodes())
-        for (int c = 0; c < model.node(node).ndof; ++c) f[block.row_of(node, c)] += out.r[k++];
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(block_rows));
+    Eigen::VectorXd r;
+    for (size_t b = 0; b < element_ids.size(); ++b) {
+      const Element& el = *model.elements()[static_cast<size_t>(element_ids[b])];
+      // The elastic force alone (Element::internal_force: no inertia terms, which vanish at rest
+      // but cost most of a beam's evaluation); an element without it, evaluated whole at rest.
+      if (!el.internal_force(gather(s.q, confs[b]), r)) {
+        LocalState ls = model.local_state(el, s);
+        ls.load_factor = 0.0;  // no applied load, no gravity
+        LocalResidual out;
+        out.reset(static_cast<int>(ls.v.size()), false);
+        el.evaluate(ls, out, false);
+        r = out.r;
+      }
+      for (size_t k = 0; k < rows[b].size(); ++k) f[rows[b][k]] += r[static_cast<Eigen::Index>(k)];
     }
     Eigen::VectorXd ft = Eigen::VectorXd::Zero(m);
     for (size_t a = 0; a < nn; ++a) {
@@ -770,8 +797,9 @@ void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids
         for (int l = 0; l < m; ++l)
           Qs[static_cast<size_t>(k * m + l)](i, j) = 0.25 * (q(i, j, k, l) + q(j, i, k, l) + q(k, j, i, l) + q(l, j, k, i));
   for (Eigen::MatrixXd& t : Qs) t = 0.5 * (t + t.transpose()).eval();
-  rb.matrices.T = std::move(Ts);
-  rb.matrices.Q = std::move(Qs);
+  // Stored by their unique entries (i ≤ j ≤ k (≤ l)): the symmetrized tensors' entries there.
+  rb.matrices.T = SymmetricTensor(3, m, [&](int i, int j, int k, int) { return Ts[static_cast<size_t>(k)](i, j); });
+  rb.matrices.Q = SymmetricTensor(4, m, [&](int i, int j, int k, int l) { return Qs[static_cast<size_t>(k * m + l)](i, j); });
 }
 
 }  // namespace alphaflex

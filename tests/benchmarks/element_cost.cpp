@@ -84,15 +84,18 @@ std::unique_ptr<ReducedBody> reduced_body(std::mt19937& rng, LocalState& s, int 
       d.M2[static_cast<size_t>(j * m + i)] = d.M2[static_cast<size_t>(i * m + j)].transpose();
     }
   if (geometric) {  // fully symmetric T and Q of the right sizes: sums of tensor powers of random vectors
-    d.T.assign(static_cast<size_t>(m), Eigen::MatrixXd::Zero(m, m));
-    d.Q.assign(static_cast<size_t>(m * m), Eigen::MatrixXd::Zero(m, m));
-    for (int r = 0; r < 3; ++r) {
-      const Eigen::VectorXd a = random(m, 1);
-      for (int k = 0; k < m; ++k) {
-        d.T[static_cast<size_t>(k)] += a[k] * a * a.transpose();
-        for (int l = 0; l < m; ++l) d.Q[static_cast<size_t>(k * m + l)] += a[k] * a[l] * a * a.transpose();
-      }
-    }
+    std::vector<Eigen::VectorXd> a;
+    for (int r = 0; r < 3; ++r) a.push_back(random(m, 1));
+    d.T = SymmetricTensor(3, m, [&](int i, int j, int k, int) {
+      double t = 0.0;
+      for (const Eigen::VectorXd& v : a) t += v[i] * v[j] * v[k];
+      return t;
+    });
+    d.Q = SymmetricTensor(4, m, [&](int i, int j, int k, int l) {
+      double t = 0.0;
+      for (const Eigen::VectorXd& v : a) t += v[i] * v[j] * v[k] * v[l];
+      return t;
+    });
   }
   std::vector<int> coords;
   for (int i = 0; i < m; ++i) coords.push_back(1 + i);

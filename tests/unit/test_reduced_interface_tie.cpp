@@ -3,6 +3,8 @@
 // interface node, and a reduced cantilever held at its root and loaded at its tied tip.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -111,6 +113,56 @@ TEST(ReducedInterfaceTie, JacobianGeometricStiffnessAndAccelerationTermMatchFini
     }
   }
   std::printf("[ FD       ] worst rel. error %.1e  reduced interface tie (Φ_q, K_Φ)\n", worst);
+}
+
+// Φ_q in closed form (reduced_interface_tie.cpp, `first`) against forward AD of the scalar-generic
+// equations (the former implementation: 18 kernel variables seeded as model/spatial_kernel.hpp,
+// chained to ξ by Φ_a): equal to round-off, Φ itself too, at random rotated, deformed
+// states with ψ up to ~1 rad (T(ψ) far from I).
+TEST(ReducedInterfaceTie, ClosedFormJacobianEqualsForwardADToRoundOff) {
+  std::mt19937 rng(2323);
+  using A1 = ad::FixedAD1<18>;
+  double worst = 0.0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const int m = 5;
+    std::vector<int> amplitudes;
+    for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
+    const MatrixXd shape = random_vector(rng, 6 * m, -0.6, 0.6).reshaped(6, m);
+    const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), random_rotation(rng), shape);
+    VectorXd q(14 + m);
+    store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data());
+    store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data() + 7);
+    q.tail(m) = random_vector(rng, m, -0.6, 0.6);
+    VectorXd phi;
+    MatrixXd phi_q;
+    tie.evaluate(q, 0.0, phi, phi_q);
+    // The AD reference: variables δx_B, δθ_B, δx_f, δθ_f, z = Φ_a ξ.
+    const Pose<A1> bs = kernel_detail::seeded_pose1<18>(pose_of(q.data()), 0);
+    const Pose<A1> fs = kernel_detail::seeded_pose1<18>(pose_of(q.data() + 7), 6);
+    const VectorXd z = shape * q.tail(m);
+    Vec3<A1> u, psi;
+    for (int i = 0; i < 3; ++i) {
+      u[i] = A1(z[i], A1::DerType::Unit(12 + i));
+      psi[i] = A1(z[3 + i], A1::DerType::Unit(15 + i));
+    }
+    std::array<A1, 6> out;
+    tie.equations(bs, fs, u, psi, out.data());
+    MatrixXd J(6, 18), ref(6, 12 + m);
+    VectorXd phi_ad(6);
+    for (int i = 0; i < 6; ++i) {
+      phi_ad[i] = out[static_cast<size_t>(i)].value();
+      J.row(i) = out[static_cast<size_t>(i)].derivatives().transpose();
+    }
+    ref.leftCols(12) = J.leftCols(12);
+    ref.rightCols(m) = J.rightCols(6) * shape;
+    // Φ by double arithmetic against AD's value part: the same expressions, a few ulps apart (the
+    // AD types' rotation coefficients round differently).
+    EXPECT_LT((phi - phi_ad).cwiseAbs().maxCoeff(), 1e-15 * (1.0 + phi_ad.norm())) << "trial " << trial;
+    const double e = (phi_q - ref).norm() / ref.norm();
+    EXPECT_LT(e, 1e-14) << "trial " << trial << "\n" << phi_q << "\n" << ref;
+    worst = std::max(worst, e);
+  }
+  std::printf("reduced interface tie: closed-form Φ_q against AD, worst relative difference %.1e\n", worst);
 }
 
 TEST(ReducedInterfaceTie, RefusesAShapeOfTheWrongSize) {

@@ -119,6 +119,29 @@ TEST(ReissnerMindlinShell, ElasticResidualIsEnergyGradientAndKMatchesFiniteDiffe
     }
 }
 
+// internal_force (what the reduction's nonlinear_stiffness differentiates) is evaluate()'s residual
+// at rest — zero velocities and accelerations, no load — to the last bit, for quadrilaterals and
+// triangles at deformed states (gravity on, so that a load factor would show).
+TEST(ReissnerMindlinShell, InternalForceIsTheResidualAtRestBitForBit) {
+  std::mt19937 rng(13);
+  for (int n : {4, 3})
+    for (int trial = 0; trial < 2; ++trial) {
+      const Sample s = sample(n, rng);
+      const ReissnerMindlinShell shell("s", s.nodes, test_section(), s.ref, s.dirs, Eigen::Vector3d(1, 0.2, 0), Eigen::Vector3d(0, 0, -9.81));
+      const Eigen::VectorXd q = deformed(s, rng, 0.2);
+      Eigen::VectorXd r;
+      ASSERT_TRUE(shell.internal_force(q, r));
+      LocalState st = alphaflex::testing::local_state(q, Eigen::VectorXd::Zero(6 * n), Eigen::VectorXd::Zero(6 * n));
+      st.load_factor = 0.0;
+      LocalResidual out;
+      out.reset(6 * n, false);
+      shell.evaluate(st, out, false);
+      ASSERT_EQ(r.size(), 6 * n);
+      EXPECT_EQ((r - out.r).cwiseAbs().maxCoeff(), 0.0) << n << " nodes, trial " << trial;
+      EXPECT_GT(r.norm(), 0.0);
+    }
+}
+
 // Inertia (M, C, and K of the director inertia at fixed body velocities), gravity and the elastic
 // part together through evaluate(): K, C, M against differences of r in q (on the group), v, q̈.
 TEST(ReissnerMindlinShell, InertiaTangentsMatchFiniteDifferences) {

@@ -223,6 +223,32 @@ TEST(CraigBampton, SparsePathEqualsDensePathOnAMidSizeBlock) {
   EXPECT_EQ(craig_bampton(K, M, tip, 8).T, sparse.T);
 }
 
+// The block's sparse K and M (from the elements' triplets) hold the dense assembly's numbers bit
+// for bit — every entry, and no stored exact zero — and an assembly without the dense copies
+// gives the same sparse matrices and the same reduction (the scene's path, reduced_beams_3d.cpp).
+TEST(AssembleBlock, SparseEqualsTheDenseAssemblyBitForBit) {
+  const Bar bar = straight_bar(5, 0.7, Vector3d(0.1, -0.2, 0.3), Vector3d(2.0, 1.0, 0.5).normalized());
+  const BlockMatrices both = assemble_block(bar.model, bar.elements), sparse = assemble_block(bar.model, bar.elements, false);
+  ASSERT_EQ(both.size(), 36);
+  for (const auto& [S, D] : {std::pair{&both.K_sparse, &both.K}, std::pair{&both.M_sparse, &both.M}}) {
+    ASSERT_EQ(D->rows(), 36);
+    EXPECT_EQ((MatrixXd(*S) - *D).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ(S->nonZeros(), (D->array() != 0.0).count());
+    for (int k = 0; k < S->outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(*S, k); it; ++it) EXPECT_NE(it.value(), 0.0);
+  }
+  EXPECT_EQ(sparse.K.size(), 0);
+  EXPECT_EQ(sparse.M.size(), 0);
+  EXPECT_EQ((MatrixXd(sparse.K_sparse) - both.K).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((MatrixXd(sparse.M_sparse) - both.M).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(sparse.nodes, both.nodes);
+  EXPECT_EQ(sparse.offsets, both.offsets);
+  const ReducedBlock a = reduce_block(bar.model, both, 0, {5}, 4, true), b = reduce_block(bar.model, sparse, 0, {5}, 4, true);
+  EXPECT_EQ((a.matrices.K - b.matrices.K).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((a.matrices.M0 - b.matrices.M0).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((a.superelement.T - b.superelement.T).cwiseAbs().maxCoeff(), 0.0);
+}
+
 TEST(RigidMassProperties, UniformBarHasTheTextbookMassCentreAndInertia) {
   const Vector3d start(0.1, -0.2, 0.3), axis = Vector3d(2.0, 1.0, 0.5).normalized();
   const Bar bar = straight_bar(5, 0.8, start, axis);
@@ -720,6 +746,99 @@ TEST(ReducedBodyGeometricStiffness, TangentsMatchFiniteDifferencesAndAD) {
   }
 }
 
+// The packed storage and contraction (SymmetricTensor) against the straightforward evaluation on
+// full arrays: T and Q generic fully symmetric tensors (sums of tensor powers of 5 random vectors,
+// so every entry differs), every entry read back through the packed index, and G₁ = Σₖ T(·,·,k) ξₖ,
+// G₂ = Σₖₗ Q(·,·,k,l) ξₖξₗ and the elastic force K̃ξ + ½T[ξ,ξ] + ⅙Q[ξ,ξ,ξ] summed over all m³ and
+// m⁴ entries: equal to round-off (the sums run in another order). m = 1 and 2 are the edge cases
+// of the multiplicities (all indices equal), 9 a general one.
+TEST(ReducedBodyGeometricStiffness, PackedEvaluationEqualsTheFullTensorsToRoundOff) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const int m : {1, 2, 9}) {
+    std::vector<VectorXd> a(5, VectorXd(m));
+    for (VectorXd& v : a)
+      for (int i = 0; i < m; ++i) v[i] = u(rng);
+    const auto full3 = [&](int i, int j, int k, int) {
+      double t = 0.0;
+      for (const VectorXd& v : a) t += v[i] * v[j] * v[k];
+      return t;
+    };
+    const auto full4 = [&](int i, int j, int k, int l) {
+      double t = 0.0;
+      for (const VectorXd& v : a) t += v[i] * v[j] * v[k] * v[l];
+      return t;
+    };
+    ReducedBodyMatrices d;
+    d.K = MatrixXd::Identity(m, m);
+    d.T = SymmetricTensor(3, m, full3);
+    d.Q = SymmetricTensor(4, m, full4);
+    EXPECT_EQ(d.T.values().size(), static_cast<size_t>(m * (m + 1) * (m + 2) / 6));
+    EXPECT_EQ(d.Q.values().size(), static_cast<size_t>(m * (m + 1) * (m + 2) * (m + 3) / 24));
+    VectorXd xi(m);
+    for (int i = 0; i < m; ++i) xi[i] = u(rng);
+    MatrixXd G1f = MatrixXd::Zero(m, m), G2f = MatrixXd::Zero(m, m);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        for (int k = 0; k < m; ++k) {
+          EXPECT_EQ(d.T(i, j, k), full3(std::min({i, j, k}), i + j + k - std::min({i, j, k}) - std::max({i, j, k}), std::max({i, j, k}), -1))
+              << i << j << k;
+          G1f(i, j) += full3(i, j, k, -1) * xi[k];
+          for (int l = 0; l < m; ++l) {
+            G2f(i, j) += full4(i, j, k, l) * xi[k] * xi[l];
+            int x[4] = {i, j, k, l};
+            std::sort(x, x + 4);
+            EXPECT_EQ(d.Q(i, j, k, l), full4(x[0], x[1], x[2], x[3]));
+          }
+        }
+    const VectorXd ff = xi + 0.5 * G1f * xi + G2f * xi / 6.0;
+    MatrixXd G1, G2;
+    d.geometric_terms(xi, G1, G2);
+    EXPECT_LT((G1 - G1f).norm(), 1e-13 * G1f.norm()) << "m = " << m;
+    EXPECT_LT((G2 - G2f).norm(), 1e-13 * G2f.norm()) << "m = " << m;
+    EXPECT_EQ((G1 - G1.transpose()).norm(), 0.0);
+    EXPECT_EQ((G2 - G2.transpose()).norm(), 0.0);
+    EXPECT_LT((d.elastic_force(xi) - ff).norm(), 1e-13 * ff.norm()) << "m = " << m;
+  }
+  EXPECT_THROW(SymmetricTensor(2, 3, [](int, int, int, int) { return 0.0; }), std::invalid_argument);
+}
+
+// nonlinear_stiffness differentiates the elements' internal forces alone (Element::internal_force)
+// where they offer them, else it evaluates them whole at rest: the same bar's T and Q both ways —
+// the beams as they are, and wrapped in an element that offers only evaluate() — bit for bit.
+class EvaluateOnly final : public Element {
+ public:
+  explicit EvaluateOnly(std::unique_ptr<Element> inner) : Element(inner->name(), inner->nodes()), inner_(std::move(inner)) {}
+  const char* type() const override { return "evaluate_only"; }
+  std::unique_ptr<Element> clone() const override { return std::make_unique<EvaluateOnly>(inner_->renumbered(nodes())); }
+  void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override { inner_->evaluate(s, out, tangent); }
+
+ private:
+  std::shared_ptr<const Element> inner_;
+};
+
+TEST(ReducedBodyGeometricStiffness, InternalForcesAloneGiveTheSameTensorsBitForBit) {
+  ReducedBar rb(3, 4);
+  Model wrapped;
+  for (const Node& nd : rb.bar.model.nodes()) wrapped.add_node(nd);
+  for (int e : rb.bar.elements) {
+    const Element& el = *rb.bar.model.elements()[static_cast<size_t>(e)];
+    VectorXd r;
+    ASSERT_TRUE(el.internal_force(rb.bar.model.initial_state().q.head(14), r));  // the beams offer it
+    wrapped.add_element(std::make_unique<EvaluateOnly>(el.renumbered(el.nodes())));
+  }
+  ReducedBlock direct = rb.rb, whole = rb.rb;
+  nonlinear_stiffness(rb.bar.model, rb.bar.elements, rb.block, direct);
+  nonlinear_stiffness(wrapped, rb.bar.elements, rb.block, whole);
+  ASSERT_EQ(direct.matrices.T.values().size(), whole.matrices.T.values().size());
+  ASSERT_EQ(direct.matrices.Q.values().size(), whole.matrices.Q.values().size());
+  EXPECT_TRUE(direct.matrices.T.values() == whole.matrices.T.values());
+  EXPECT_TRUE(direct.matrices.Q.values() == whole.matrices.Q.values());
+  double big = 0.0;
+  for (double t : direct.matrices.T.values()) big = std::max(big, std::abs(t));
+  EXPECT_GT(big, 0.0);  // the constraint modes carry the stretch: T is not zero here
+}
+
 // All modes and small motions still give the full linear model: at rest (ξ = 0) T[ξ] and Q[ξ,ξ]
 // vanish, so the body's r, K, C, M with geometric stiffness equal those without (bit for bit: the
 // added terms are exact zeros), which AllModesKeptReproduceTheFullLinearModelAtRest compares with
@@ -728,7 +847,7 @@ TEST(ReducedBodyGeometricStiffness, AtRestTheLinearizationIsUnchanged) {
   ReducedBar rb(24, -1);
   const ReducedBodyMatrices linear = rb.rb.matrices;
   nonlinear_stiffness(rb.bar.model, rb.bar.elements, rb.block, rb.rb);
-  ASSERT_EQ(rb.rb.matrices.T.size(), 24u);
+  ASSERT_EQ(rb.rb.matrices.T.dim(), 24);
   const int m = 24, n = 6 + m;
   std::vector<int> coords;
   for (int i = 0; i < m; ++i) coords.push_back(1 + i);

@@ -103,6 +103,12 @@ class GeometricallyExactBeam final : public Element {
   Vector6d strain(const Eigen::VectorXd& q) const;
   /// W = (L0/2) εᵀ C ε (J).
   double elastic_energy(const Eigen::VectorXd& q) const override;
+  /// r_el at q (elastic_forces without K): evaluate()'s residual at rest (v = q̈ = 0, no load),
+  /// bit for bit, without the inertia and damping terms.
+  bool internal_force(const Eigen::VectorXd& q, Eigen::VectorXd& r) const override {
+    elastic_forces(q, r);
+    return true;
+  }
 
   /// ε at the given poses of nodes A and B; instantiated for double, ad::FixedAD1<12> and
   /// ad::FixedAD2<12> (spatial_kernel.hpp).

@@ -29,6 +29,60 @@
 
 namespace alphaflex {
 
+/// A fully symmetric tensor of order 3 or 4 on `dim` indices (the geometric stiffness's T and Q),
+/// stored by its unique entries only — i ≤ j ≤ k (≤ l), lexicographic — C(m + 2, 3) and C(m + 3, 4)
+/// numbers instead of m³ and m⁴ (m = 14: 560 and 2380 for 2744 and 38 416). Its contraction over
+/// the last indices runs on the index pairs p ≤ q (P = m(m + 1)/2 of them): a P × m (order 3) or
+/// P × P (order 4) matrix of the unique entries, each column (k, l) weighted by its multiplicity
+/// (1 if k = l, else 2), made once (docs/theory/reduced_bodies.md, "Geometric stiffness", cost).
+class SymmetricTensor {
+ public:
+  SymmetricTensor() = default;
+  /// The tensor whose unique entries are entry(i, j, k, l) for i ≤ j ≤ k (≤ l) (l = -1 for order 3).
+  /// Throws std::invalid_argument unless order is 3 or 4 and dim ≥ 0.
+  template <class F>
+  SymmetricTensor(int order, int dim, F entry) : SymmetricTensor(order, dim) {
+    size_t e = 0;
+    for_each_unique([&](const int* x) { values_[e++] = entry(x[0], x[1], x[2], order_ == 4 ? x[3] : -1); });
+    plan();
+  }
+  bool empty() const { return order_ == 0; }
+  int order() const { return order_; }
+  int dim() const { return dim_; }
+  /// The unique entries, in the order above.
+  const std::vector<double>& values() const { return values_; }
+  /// The entry at any index (l = -1 for order 3): the unique entry of its sorted indices.
+  double operator()(int i, int j, int k, int l = -1) const;
+  /// Adds the contraction with x over the last order − 2 indices, G(p, q) += Σₖ t_pqk xₖ (order 3)
+  /// or Σₖₗ t_pqkl xₖ xₗ (order 4), to the m × m matrix G (symmetric: the pairs p ≤ q computed,
+  /// then mirrored): a matrix–vector product of P × m or P², about m³/2 or m⁴/4 products.
+  void contract_into(const Eigen::VectorXd& x, Eigen::MatrixXd& G) const;
+
+ private:
+  SymmetricTensor(int order, int dim);
+  // Calls f(x) for each sorted index tuple x (order_ entries), in the storage order.
+  template <class F>
+  void for_each_unique(F f) const {
+    int x[4] = {0, 0, 0, 0};
+    const int r = order_;
+    if (dim_ == 0) return;
+    while (true) {
+      f(x);
+      int p = r - 1;
+      while (p >= 0 && x[p] == dim_ - 1) --p;
+      if (p < 0) return;
+      ++x[p];
+      for (int q = p + 1; q < r; ++q) x[q] = x[p];
+    }
+  }
+  void plan();
+  int order_ = 0, dim_ = 0;
+  std::vector<double> values_;
+  // The contraction's matrix: rows the pairs (p ≤ q), columns the indices k (order 3) or the pairs
+  // (k ≤ l) times their multiplicity (order 4), in lexicographic pair order.
+  Eigen::MatrixXd pairs_;
+};
+
 /// The plain data of a reduced body, for m elastic coordinates (the element sees nothing else).
 struct ReducedBodyMatrices {
   Eigen::MatrixXd M0;                 ///< (6 + m)²: 𝕄 at ξ = 0
@@ -36,22 +90,24 @@ struct ReducedBodyMatrices {
   std::vector<Eigen::Matrix3d> M2;    ///< m² matrices (i·m + j): the ω–ω block of 𝕄's quadratic part
   Eigen::MatrixXd K;                  ///< m × m: K̃, the elastic stiffness in the basis
   /// Geometric stiffness (docs/theory/reduced_bodies.md, "Geometric stiffness"): empty (a linear
-  /// elastic force K̃ξ), or m matrices m × m, T[k](i, j) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ at ξ = 0 of the block's own
-  /// nonlinear elastic energy, fully symmetric, and Q (m² matrices m × m, Q[k·m + l](i, j) =
-  /// ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ; empty: none): U = ½ ξᵀK̃ξ + ⅙ T[ξ,ξ,ξ] + ¹⁄₂₄ Q[ξ,ξ,ξ,ξ], the elastic force
+  /// elastic force K̃ξ), or T(i, j, k) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ at ξ = 0 of the block's own nonlinear elastic
+  /// energy and Q(i, j, k, l) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ (empty: none), both fully symmetric and stored by
+  /// their unique entries: U = ½ ξᵀK̃ξ + ⅙ T[ξ,ξ,ξ] + ¹⁄₂₄ Q[ξ,ξ,ξ,ξ], the elastic force
   /// K̃ξ + ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ] and its tangent K̃ + T[ξ] + ½ Q[ξ,ξ] (stress stiffening; the quartic
   /// term keeps U bounded below when the stretch is in the basis).
-  std::vector<Eigen::MatrixXd> T, Q;
+  SymmetricTensor T, Q;
   int elastic() const { return static_cast<int>(K.rows()); }
   /// 𝕄(ξ) (6 + m)².
   Eigen::MatrixXd mass_matrix(const Eigen::VectorXd& xi) const;
-  /// T[ξ] = Σₖ ξₖ T[k] and Q[ξ,ξ] = Σₖₗ ξₖ ξₗ Q[k·m + l] (m × m; zero without them): the elastic
-  /// force is K̃ξ + (½ G₁ + ⅙ G₂) ξ, its tangent K̃ + G₁ + ½ G₂. O(m⁴) with Q.
+  /// G₁ = T[ξ] = Σₖ T(·, ·, k) ξₖ and G₂ = Q[ξ,ξ] = Σₖₗ Q(·, ·, k, l) ξₖ ξₗ (m × m; zero without
+  /// them): the elastic force is K̃ξ + (½ G₁ + ⅙ G₂) ξ, its tangent K̃ + G₁ + ½ G₂. O(m⁴/4) with Q
+  /// (SymmetricTensor::contract_into).
   void geometric_terms(const Eigen::VectorXd& xi, Eigen::MatrixXd& G1, Eigen::MatrixXd& G2) const;
   /// The elastic force K̃ξ + ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ].
   Eigen::VectorXd elastic_force(const Eigen::VectorXd& xi) const;
   /// Throws std::invalid_argument unless the sizes agree, M0 and K are symmetric and M2[i·m+j] = M2[j·m+i]ᵀ
-  /// (to round-off: they are DᵢᵀM̄Dⱼ), and T is empty or m symmetric m × m matrices.
+  /// (to round-off: they are DᵢᵀM̄Dⱼ), T is empty or of order 3 on m indices, and Q empty or of
+  /// order 4 on m indices with T.
   void check() const;
 };
 

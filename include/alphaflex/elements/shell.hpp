@@ -132,6 +132,11 @@ class ReissnerMindlinShell final : public Element {
   /// convention) at the configuration q (7 per node).
   double elastic_energy(const Eigen::VectorXd& q) const override;
   void elastic_forces(const Eigen::VectorXd& q, Eigen::VectorXd& r, Eigen::MatrixXd* K = nullptr) const;
+  /// elastic_forces without K: evaluate()'s residual at rest (v = q̈ = 0, no load), bit for bit.
+  bool internal_force(const Eigen::VectorXd& q, Eigen::VectorXd& r) const override {
+    elastic_forces(q, r);
+    return true;
+  }
 
   /// Reference area (m²), centre frame (columns: material axis 1, axis 2, normal).
   double area() const { return area_; }

@@ -19,7 +19,9 @@
 //
 // Derivatives: the equations depend on ξ only through z = [Φᵗ_a ξ; Φʳ_a ξ] (6 numbers, linear in
 // ξ), so they are written as a kernel of B's and the frame's right-trivialized increments and z
-// (18 variables, fixed-size forward AD as model/spatial_kernel.hpp), and chained to ξ exactly:
+// (18 variables), and chained to ξ exactly. Φ_z, needed at every Newton iteration, in closed form
+// (reduced_interface_tie.cpp: the fixed joint's rows, ∂exp(ψ)/∂ψ by the right tangent operator
+// T(ψ)); the second derivatives by fixed-size forward AD as model/spatial_kernel.hpp. Then:
 // Φ_ξ = Φ_z S, K_Φ = Pᵀ H P with S = Φ_a (6 × m) and P = diag(I₁₂, S). Φ_q, the geometric stiffness
 // ∂(Φ_qᵀλ)/∂δ' and the acceleration term are exact; they are checked against finite differences.
 //
@@ -50,6 +52,9 @@ class ReducedInterfaceTie final : public Constraint {
   /// "x", "y", "z", "a2·b3", "a3·b1", "a1·b2" (the fixed joint's names).
   std::string equation_name(int k) const override;
   int amplitudes() const { return static_cast<int>(shape_.cols()); }
+  /// X_a (m, frame axes) and R̄_a: the tied point's pose in the floating frame at ξ = 0.
+  const Eigen::Vector3d& position() const { return position_; }
+  const Eigen::Matrix3d& rotation() const { return rotation_; }
 
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,

@@ -25,18 +25,24 @@ class Model;
 
 /// The linear K and M of a set of elements at the model's initial state (q0, zero velocities and
 /// accelerations), on the unknowns of the nodes they touch, in the nodes' own increments (δx world,
-/// δθ node frame for Frame3D nodes).
+/// δθ node frame for Frame3D nodes). Sparse always (a node couples to its elements' nodes only:
+/// O(n · bandwidth) numbers); dense copies only if asked (n² numbers: 1.6 GB at n = 10⁴).
 struct BlockMatrices {
   std::vector<int> nodes;    ///< model node ids, ascending
   std::vector<int> offsets;  ///< first row of each node in K, M
-  Eigen::MatrixXd K, M;
+  Eigen::SparseMatrix<double> K_sparse, M_sparse;  ///< exact zeros not stored
+  Eigen::MatrixXd K, M;      ///< dense copies (assemble_block's `dense`), else empty
+  /// The number of coordinates (rows of K).
+  int size() const { return static_cast<int>(K_sparse.rows()); }
   /// Row of unknown `k` of model node `node`; -1 if the node is not in the block.
   int row_of(int node, int k = 0) const;
 };
 
-/// Assembles the elements `element_ids` (indices into model.elements()) at the initial state.
-/// Throws std::invalid_argument if the list is empty.
-BlockMatrices assemble_block(const Model& model, const std::vector<int>& element_ids);
+/// Assembles the elements `element_ids` (indices into model.elements()) at the initial state: the
+/// sparse K, M from the elements' triplets, and with `dense` the dense copies as well (the same
+/// sums in the same order: equal bit for bit). The reduction itself (craig_bampton, reduce_block,
+/// nonlinear_stiffness) needs only the sparse ones. Throws std::invalid_argument if the list is empty.
+BlockMatrices assemble_block(const Model& model, const std::vector<int>& element_ids, bool dense = true);
 
 /// A superelement: full coordinates u = T ξ with ξ = [u_b; η], u_b the interface (boundary)
 /// coordinates in the order given (T's rows there are [I, 0]), η the amplitudes of the kept normal
@@ -141,12 +147,13 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
                           int modes, bool inertia_modes = false, Reduction method = Reduction::craig_bampton);
 
 /// The cubic and quartic terms of the block's elastic energy along the basis of `rb`
-/// (docs/theory/reduced_bodies.md, "Geometric stiffness"), stored in rb.matrices.T and .Q:
-/// T[k](i, j) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ, Q[k·m + l](i, j) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ at ξ = 0, U(ξ) the energy of the
+/// (docs/theory/reduced_bodies.md, "Geometric stiffness"), stored in rb.matrices.T and .Q (their
+/// unique entries): T(i, j, k) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ, Q(i, j, k, l) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ at ξ = 0, U(ξ) the energy of the
 /// block's own (nonlinear) elements `element_ids` at the poses ReducedBlock::node_pose gives (frame
 /// at its initial pose). Computed once, by central second and third differences of the projected
-/// internal force f̃ᵢ(ξ) = ∂U/∂ξᵢ (exact: the nodes' forces times the derivative of node_pose, with
-/// the tangent operator of exp for the rotations), stencils whose even (second) or odd (third)
+/// internal force f̃ᵢ(ξ) = ∂U/∂ξᵢ (exact: the nodes' forces — Element::internal_force, the elastic
+/// force alone, where the elements offer it (beams, shells); else evaluate() at rest — times the
+/// derivative of node_pose, with the tangent operator of exp for the rotations), stencils whose even (second) or odd (third)
 /// terms cancel: error O(h²), h = 10⁻³ of the block's size in each direction's largest
 /// displacement; 2m² + 4m³/3 block evaluations. Both are made fully symmetric; `asymmetry` (if
 /// given) receives T's max |T − T_sym| / max |T| before (a check of the differences). Throws

@@ -81,6 +81,11 @@ class Element {
   /// The elastic (strain) energy W (J) stored at the configuration q of its nodes; 0 for elements
   /// that store none.
   virtual double elastic_energy(const Eigen::VectorXd& /*q*/) const { return 0.0; }
+  /// Its internal (elastic) force r = ∂W/∂δ at the configuration q, into r (resized; the
+  /// residual's order and increments): no inertia, damping or loads, so none of them is computed.
+  /// What a reduction differentiates (modal/superelement.hpp, nonlinear_stiffness). Returns false,
+  /// r untouched, if the element does not offer it: the caller evaluates the whole element at rest.
+  virtual bool internal_force(const Eigen::VectorXd& /*q*/, Eigen::VectorXd& /*r*/) const { return false; }
 
   /// The same element on other indices of the same nodes: a subdomain's local numbering
   /// (partition/subdomain.hpp). An element holds no reference to the model, so the copy is whole.

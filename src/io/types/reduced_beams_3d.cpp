@@ -114,7 +114,7 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
   const int frame = interface_node.at(m0);
   std::vector<int> others;
   for (size_t i = 1; i < mesh_interface.size(); ++i) others.push_back(in_block.at(mesh_interface[i]));
-  const BlockMatrices matrices = assemble_block(scratch, elements);
+  const BlockMatrices matrices = assemble_block(scratch, elements, /*dense=*/false);  // sparse only: O(n) memory
   ReducedBlock rb;
   try {
     rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes, inertia_modes, basis);
