@@ -3,6 +3,7 @@
 // elements on a physical group, the mesh nodes become model nodes shared where blocks meet, named
 // mesh points become nodes that joints, loads and sensors refer to by name, and every physical
 // group is kept (as model nodes) for joints and loads given on a group.
+#include <deque>
 #include <filesystem>
 #include <unordered_set>
 
@@ -104,11 +105,16 @@ void keep_groups(SceneBuilder& sb, const MeshData& mesh, const std::vector<int>&
 }
 
 /// Reads the list of a registered block type (`beams`, `shells`): each item's name (unique in the
-/// list) and keys, checked against the type's schema, then the type's constructor.
+/// list) and keys, checked against the type's schema, then the type's constructor. All items are
+/// checked before any is built, so that a reduced block may take later blocks of the list into its
+/// body (`reduction.blocks`: recorded in sb.blocks.absorbed here, built by the reduced block).
 void read_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& list, const input::Registry<BlockBuild>::Type& type) {
   const std::string& section = type.name;
   if (!list.IsSequence() || list.size() == 0) rd.fail(list, section, "expected a list of " + section);
   std::set<std::string> names;
+  std::deque<std::string> item_names, paths;  // stable: Item and ListedBlock hold references
+  std::deque<YAML::Node> nodes;
+  std::deque<Section> keys;
   for (size_t i = 0; i < list.size(); ++i) {
     const YAML::Node node = list[i];
     std::string path = section + "[" + std::to_string(i) + "]";
@@ -117,9 +123,45 @@ void read_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& list, const inp
     path = section + "[" + name + "]";
     if (!names.insert(name).second)
       rd.fail(node["name"], path + ".name", "a " + section.substr(0, section.size() - 1) + " named '" + name + "' exists already");
-    const Section keys(rd, node, path, type.schema);
-    type.build.build(Item{rd, sb, sb.model_, node, name, path, keys});
+    nodes.push_back(node);
+    item_names.push_back(name);
+    paths.push_back(path);
+    keys.emplace_back(rd, node, path, type.schema);
   }
+  sb.blocks.listed.clear();
+  sb.blocks.absorbed.clear();
+  for (size_t i = 0; i < list.size(); ++i) sb.blocks.listed[item_names[i]] = {nodes[i], &paths[i], &keys[i]};
+  // `reduction.blocks`: each named block is an item of this list, without a reduction of its own,
+  // taken by one reduced block only.
+  for (size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node& item = nodes[i];  // const: operator[] must not add keys
+    const YAML::Node red = item["reduction"];
+    if (!red.IsDefined() || !red.IsMap()) continue;
+    const YAML::Node more = red["blocks"];
+    if (!more.IsDefined() || !more.IsSequence()) continue;  // absent; a wrong type is the reduction schema's error
+    const std::string at = paths[i] + ".reduction.blocks";
+    for (const auto& b : more) {
+      const std::string other = b.IsScalar() ? b.as<std::string>() : "";
+      const auto l = sb.blocks.listed.find(other);
+      if (l == sb.blocks.listed.end()) {
+        std::string known;
+        for (const std::string& n : item_names)
+          if (n != item_names[i]) known += (known.empty() ? "" : ", ") + n;
+        rd.fail(b, at, "'" + other + "' is not a block of `" + section + "` (the others: " + (known.empty() ? "none" : known) + ")");
+      }
+      if (other == item_names[i]) rd.fail(b, at, "names the block itself ('" + other + "'); list the further blocks of its body");
+      const YAML::Node& taken = l->second.node;
+      if (taken["reduction"])
+        rd.fail(b, at, "'" + other + "' has a `reduction` of its own: a block is part of one reduced body (remove one of the two)");
+      const auto [o, fresh] = sb.blocks.absorbed.emplace(other, item_names[i]);
+      if (!fresh)
+        rd.fail(b, at, "'" + other + "' is part of the reduced body of '" + o->second + "' already" +
+                           (o->second == item_names[i] ? " (named twice)" : ""));
+    }
+  }
+  for (size_t i = 0; i < list.size(); ++i)
+    type.build.build(Item{rd, sb, sb.model_, nodes[i], item_names[i], paths[i], keys[i]});
+  sb.blocks.listed.clear();
 }
 
 }  // namespace

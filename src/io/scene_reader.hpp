@@ -64,6 +64,16 @@ struct MeshBlocks {
   std::set<std::string> groups_used;       ///< groups a block uses (one block per group)
   std::map<int, std::string> reduced;      ///< mesh nodes of reduced blocks that have no model node → the block (types/reduced_beams_3d.cpp)
   std::map<std::string, Eigen::Matrix3d> placement;  ///< rotation of each placed group (scene_initial.cpp)
+  /// The items of the block list being read (`beams` or `shells`), by name (scene_mesh.cpp
+  /// read_blocks): a reduced block that takes further blocks of its list into its body
+  /// (`reduction.blocks`, types/reduced_beams_3d.cpp) builds their elements itself.
+  struct ListedBlock {
+    YAML::Node node;
+    const std::string* path;
+    const Section* keys;
+  };
+  std::map<std::string, ListedBlock> listed;
+  std::map<std::string, std::string> absorbed;  ///< block → the reduced block whose body it is part of
   /// Mesh node → (velocity, angular velocity), world components, of an initial velocity field (scene_initial.cpp).
   std::map<int, std::array<Eigen::Vector3d, 2>> velocity;
   /// A direction given for a block on `group` (beam orientation, shell material axis), turned with the group's placement.

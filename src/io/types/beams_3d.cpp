@@ -40,17 +40,33 @@ const Schema& properties_schema() {
 
 void read_beam_block_3d(const Item& it) {
   const Section& k = it.keys;
+  // A block that `reduction.blocks` of another names is built by that reduced block (its part).
+  if (const auto owner = it.sb.blocks.absorbed.find(it.name); owner != it.sb.blocks.absorbed.end()) {
+    if (k.has("damping"))
+      it.rd.fail(k.node("damping"), it.at("damping"), "material damping is for a full-mesh block; this block is part of the reduced body '" +
+                                                          owner->second + "' (remove one of the two)");
+    return;
+  }
+  if (k.has("damping") && k.has("reduction"))
+    it.rd.fail(k.node("damping"), it.at("damping"), "material damping is for a full-mesh block; a block with `reduction` has none (remove one of the two)");
+  if (k.has("reduction")) return read_reduced_block_3d(it, beam_part);
   const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
   const BeamSection section = read_beam_section(it.rd, k.node("section"), it.at("section"));
   const Eigen::Vector3d orient = it.sb.blocks.placed(k.text("group"), k.direction("orientation"));
-  if (k.has("damping") && k.has("reduction"))
-    it.rd.fail(k.node("damping"), it.at("damping"), "material damping is for a full-mesh block; a block with `reduction` has none (remove one of the two)");
-  if (k.has("reduction")) return read_reduced_beam_block_3d(it, block, section, orient);
   add_beam_elements(it, block, section, orient, it.model,
                     [&](int m, const Eigen::VectorXd& q0) { return block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6)); });
 }
 
 }  // namespace
+
+BlockPart beam_part(const Item& it) {
+  const MeshLineBlock& block = mesh_block(it, it.sb.blocks.mesh.line_blocks, "curve", "beam");
+  const BeamSection section = read_beam_section(it.rd, it.keys.node("section"), it.at("section"));
+  const Eigen::Vector3d orient = it.sb.blocks.placed(it.keys.text("group"), it.keys.direction("orientation"));
+  return {mesh_nodes_of(block.elements), block.name, [&it, &block, section, orient](Model& model, const BlockNodeOf& node_of) {
+            return add_beam_elements(it, block, section, orient, model, node_of);
+          }};
+}
 
 std::vector<int> add_beam_elements(const Item& it, const MeshLineBlock& block, const BeamSection& section, const Eigen::Vector3d& orient,
                                    Model& model, const BlockNodeOf& node_of) {

@@ -125,7 +125,8 @@ int block_node(const Item& it, int m, NodeKind kind, const Eigen::VectorXd& q0, 
   const auto red = b.reduced.find(m);
   if (red != b.reduced.end())
     it.rd.fail(it.node, it.path, "mesh point '" + mesh_point_label(b, m) + "' is an inner point of the reduced block '" + red->second +
-                                     "': add it to that block's reduction.interface (a named point) so that the blocks stay connected");
+                                     "': add it to that block's reduction.interface (a named point) so that the blocks stay connected, or this block "
+                                     "to its reduction.blocks (one reduced body)");
   Node nd;
   nd.kind = kind;
   const auto pn = b.point_name.find(m);

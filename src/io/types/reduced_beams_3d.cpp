@@ -6,6 +6,7 @@
 // to the body's pose there (joints/reduced_interface_tie.hpp), so joints, loads and sensors attach
 // to it as on a full mesh.
 #include <algorithm>
+#include <deque>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -33,8 +34,11 @@ const Schema& reduction_schema() {
                                                                              "the block's coordinates minus the interface's; `herting` at most the "
                                                                              "block's coordinates less the first point's 6 (a mode that adds nothing "
                                                                              "to the basis gets no amplitude)", Range::non_negative()},
-      {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block; the first carries the floating frame, each other "
-                                                 "one gets a node tied to the body (joints, loads, sensors attach to all of them)"},
+      {"interface", KeyType::Texts, "–", kRequired, "named mesh points of the block (or of its further `blocks`); the first carries the "
+                                                 "floating frame, each other one gets a node tied to the body (joints, loads, sensors attach to all of them)"},
+      {"blocks", KeyType::Texts, "–", "– (none)", "further blocks of the same list (`beams` or `shells`) that are part of this body: each keeps "
+                                               "its own group, section and orientation, has no `reduction` of its own, and the mesh points it shares "
+                                               "with the others become inner points of the one reduced body (docs/input.md, \"Reduced beam blocks\")"},
       {"geometric_stiffness", KeyType::Flag, "–", "off", "on: the elastic force gets the cubic and quartic terms of the block's own "
                                                         "nonlinear beam energy along the basis, ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ] (stress stiffening; "
                                                         "docs/theory/reduced_bodies.md); "
@@ -47,14 +51,7 @@ const Schema& reduction_schema() {
   return s;
 }
 
-void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, const BeamSection& section, const Eigen::Vector3d& orient) {
-  read_reduced_block_3d(it, mesh_nodes_of(block.elements), block.name, [&](Model& model, const BlockNodeOf& node_of) {
-    return add_beam_elements(it, block, section, orient, model, node_of);
-  });
-}
-
-void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, const std::string& group,
-                           const BlockElementsOf& add_elements) {
+void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
   const YAML::Node rn = it.keys.node("reduction");
   const std::string at = it.at("reduction");
   if (!rn.IsMap()) it.rd.fail(rn, at, "expected a map {method: craig_bampton | herting | rigid, modes: k, interface: [points]}");
@@ -70,7 +67,35 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
   if (inertia_modes && rigid) it.rd.fail(rn["static_modes"], at + ".static_modes", "needs elastic amplitudes: method rigid keeps none");
   if (geometric && rigid) it.rd.fail(rn["geometric_stiffness"], at + ".geometric_stiffness", "needs elastic amplitudes: method rigid keeps none");
   if (names.empty()) it.rd.fail(rn["interface"], at + ".interface", "names no point: the first interface point carries the body's frame");
-  // The interface points: named mesh points on the block.
+  // The body's blocks: this one, then those of `blocks` (scene_mesh.cpp read_blocks checked that
+  // each is another block of the list, without a reduction, taken once), each built by its own
+  // type with its own section; the elements of all are reduced together.
+  std::deque<std::string> more_names;
+  std::deque<Item> more;  // stable: the parts' builders hold them
+  for (const std::string& other : r.has("blocks") ? r.texts("blocks") : std::vector<std::string>{}) {
+    const MeshBlocks::ListedBlock& lb = it.sb.blocks.listed.at(other);
+    more_names.push_back(other);
+    more.push_back(Item{it.rd, it.sb, it.model, lb.node, more_names.back(), *lb.path, *lb.keys});
+  }
+  std::vector<BlockPart> parts{part_of(it)};
+  for (const Item& m : more) parts.push_back(part_of(m));
+  std::vector<int> block_nodes;
+  std::string group = "group '" + parts.front().group + "'";
+  for (size_t p = 0; p < parts.size(); ++p) {
+    block_nodes.insert(block_nodes.end(), parts[p].nodes.begin(), parts[p].nodes.end());
+    if (p > 0) group = (p == 1 ? "groups '" + parts.front().group + "'" : group) + ", '" + parts[p].group + "'";
+  }
+  std::sort(block_nodes.begin(), block_nodes.end());
+  block_nodes.erase(std::unique(block_nodes.begin(), block_nodes.end()), block_nodes.end());
+  const BlockElementsOf add_elements = [&](Model& model, const BlockNodeOf& node_of) {
+    std::vector<int> ids;
+    for (const BlockPart& p : parts) {
+      const std::vector<int> e = p.add_elements(model, node_of);
+      ids.insert(ids.end(), e.begin(), e.end());
+    }
+    return ids;
+  };
+  // The interface points: named mesh points on the body's blocks.
   std::map<int, int> in_block;  // mesh node → scratch node
   for (int m : block_nodes) in_block.emplace(m, -1);
   const MeshBlocks& mb = it.sb.blocks;  // NOLINT: read only here
@@ -80,7 +105,7 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
     for (const auto& [m, pn] : mb.point_name)
       if (pn == name && in_block.count(m)) found = m;
     if (found < 0)
-      it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is not a named mesh point of group '" + group + "'");
+      it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is not a named mesh point of " + group);
     if (std::find(mesh_interface.begin(), mesh_interface.end(), found) != mesh_interface.end())
       it.rd.fail(rn["interface"], at + ".interface", "'" + name + "' is given twice (or names the same mesh point as another entry)");
     mesh_interface.push_back(found);
@@ -99,7 +124,7 @@ void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, 
     // (a weld of two blocks) would be left unconnected, so the point must be an interface point.
     if (!on_interface && mb.node_of[static_cast<size_t>(m)] >= 0)
       it.rd.fail(rn["interface"], at + ".interface", "mesh point '" + mesh_point_label(mb, m) +
-                 "' of group '" + group + "' is shared with another block: add it to reduction.interface (a named point) so that the blocks stay connected");
+                 "' of " + group + " is shared with another block: add it to reduction.interface (a named point) so that the blocks stay connected");
     Node nd;
     nd.kind = NodeKind::Frame3D;
     nd.name = std::to_string(m);

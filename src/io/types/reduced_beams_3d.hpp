@@ -29,18 +29,29 @@ std::vector<int> mesh_nodes_of(const Elements& elements) {
   return m;
 }
 
-/// A beam or shell block with a `reduction` key (`block_nodes`: the mesh nodes of its elements in
-/// mesh group `group`, built by `add_elements`): see read_reduced_beam_block_3d.
-void read_reduced_block_3d(const Item& it, const std::vector<int>& block_nodes, const std::string& group,
-                           const BlockElementsOf& add_elements);
+/// One block's part of a reduced body: the mesh nodes of its elements (each once, sorted), its mesh
+/// group (for messages) and the builder of its elements on any model.
+struct BlockPart {
+  std::vector<int> nodes;
+  std::string group;
+  BlockElementsOf add_elements;
+};
+/// The part of a block item of the list being read (`beams`: types/beams_3d.cpp beam_part,
+/// `shells`: types/shells_3d.cpp); it takes the item's mesh group (one block per group).
+using BlockPartOf = std::function<BlockPart(const Item&)>;
+
+/// A beam or shell block with a `reduction` key, with the further blocks of its list that
+/// `reduction.blocks` names (each built by `part_of` with its own section): all their elements are
+/// built on a scratch model and reduced there as one body (modal/superelement.hpp); the run's model
+/// gets the frame node (the first interface point), one scalar node per elastic amplitude, one
+/// ReducedBody element named after the block, and a node with a ReducedInterfaceTie
+/// (NAME:tie:POINT) at each other interface point.
+void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of);
 
 /// The schema of `reduction` (registered with the spatial beams; shells use the same).
 const Schema& reduction_schema();
 
-/// A beam block with a `reduction` key: the block built on a scratch model and reduced there
-/// (modal/superelement.hpp); the run's model gets the frame node (the first interface point), one
-/// scalar node per elastic amplitude, one ReducedBody element named after the block, and a node
-/// with a ReducedInterfaceTie (NAME:tie:POINT) at each other interface point.
-void read_reduced_beam_block_3d(const Item& it, const MeshLineBlock& block, const BeamSection& section, const Eigen::Vector3d& orient);
+/// The part of a spatial beam block (its group, section and orientation).
+BlockPart beam_part(const Item& it);
 
 }  // namespace alphaflex::scene_detail

@@ -136,14 +136,23 @@ std::vector<int> add_shell_elements(const Item& it, const MeshSurfaceBlock& bloc
   return ids;
 }
 
-void read_shell_block(const Item& it) {
+// The part of a shell block in a reduced body (types/reduced_beams_3d.hpp).
+BlockPart shell_part(const Item& it) {
   const MeshSurfaceBlock& block = mesh_block(it, it.sb.blocks.mesh.surface_blocks, "surface", "beam or shell");
   const ShellSection section = read_shell_section(it);
+  return {mesh_nodes_of(block.elements), block.name, [&it, &block, section](Model& model, const BlockNodeOf& node_of) {
+            return add_shell_elements(it, block, section, model, node_of);
+          }};
+}
+
+void read_shell_block(const Item& it) {
+  // A block that `reduction.blocks` of another names is built by that reduced block (its part).
+  if (it.sb.blocks.absorbed.count(it.name)) return;
   // `reduction` (issue 19): the shell block as one reduced body, the superelement from the
   // shell mesh's own M and K at the reference (types/reduced_beams_3d.cpp).
-  if (it.keys.has("reduction"))
-    return read_reduced_block_3d(it, mesh_nodes_of(block.elements), block.name,
-                                 [&](Model& model, const BlockNodeOf& node_of) { return add_shell_elements(it, block, section, model, node_of); });
+  if (it.keys.has("reduction")) return read_reduced_block_3d(it, shell_part);
+  const MeshSurfaceBlock& block = mesh_block(it, it.sb.blocks.mesh.surface_blocks, "surface", "beam or shell");
+  const ShellSection section = read_shell_section(it);
   add_shell_elements(it, block, section, it.model,
                      [&](int m, const Eigen::VectorXd& q0) { return block_node(it, m, NodeKind::Frame3D, q0, Eigen::VectorXd::Zero(6)); });
 }
