@@ -29,26 +29,18 @@ void ReducedBody::output(const LocalState& s, Eigen::VectorXd& values) const {
   }
   const LocalState p = mesh_->state(s);
   const Eigen::Index np = static_cast<Eigen::Index>(mesh_->points());
-  const Eigen::Index ne = static_cast<Eigen::Index>(mesh_->elements().size());
-  std::vector<CellField> fields = mesh_->cell_fields();
-  Eigen::Index width = 0;
-  for (const CellField& f : fields) width += f.components;
-  values.resize(6 * np + width * ne);
+  values.resize(mesh_->output_size());
   for (Eigen::Index a = 0; a < np; ++a) {
     values.segment<3>(3 * a) = p.q.segment<3>(7 * a);
     values.segment<3>(3 * np + 3 * a) = p.q.segment<3>(7 * a) - mesh_->point(static_cast<size_t>(a)).initial;
   }
-  // Each element's own recovery (a beam's section forces and strains) at the rebuilt poses.
+  // Each element's own recovery (a beam's section forces and strains) at the rebuilt poses, in the
+  // layout of MeshReconstruction::output_index (missing values 0).
   const std::vector<Eigen::VectorXd> cells = mesh_->element_outputs(s);
-  for (Eigen::Index k = 0; k < ne; ++k) {
-    const Eigen::VectorXd& cell = cells[static_cast<size_t>(k)];
-    Eigen::Index at = 6 * np, c = 0;
-    for (const CellField& f : fields) {
-      for (int j = 0; j < f.components; ++j, ++c)
-        values[at + k * f.components + j] = c < cell.size() ? cell[c] : 0.0;
-      at += f.components * ne;
-    }
-  }
+  Eigen::Index width = 0;
+  for (const CellField& f : mesh_->cell_fields()) width += f.components;
+  for (size_t k = 0; k < cells.size(); ++k)
+    for (int c = 0; c < width; ++c) values[mesh_->output_index(k, c)] = c < cells[k].size() ? cells[k][c] : 0.0;
 }
 
 }  // namespace alphaflex

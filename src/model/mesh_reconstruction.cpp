@@ -31,18 +31,44 @@ MeshReconstruction::MeshReconstruction(std::vector<Point> points, std::vector<st
       if (n < 0 || static_cast<size_t>(n) >= points_.size())
         throw std::invalid_argument("mesh reconstruction: element '" + e->name() + "' names point " + std::to_string(n) + " of " +
                                     std::to_string(points_.size()));
+  if (!elements_.empty()) fields_ = elements_.front()->cell_fields();
 }
 
 const char* MeshReconstruction::structure() const { return elements_.empty() ? nullptr : elements_.front()->structure(); }
 
-std::vector<CellField> MeshReconstruction::cell_fields() const {
-  return elements_.empty() ? std::vector<CellField>{} : elements_.front()->cell_fields();
+namespace {
+
+/// The floating frame's pose and velocities and the amplitudes, read once from the body's state.
+struct FrameState {
+  explicit FrameState(const LocalState& body, int m)
+      : f(pose_of(body.q.data())), xi(body.q.segment(7, m)), xid(body.v.segment(6, m)), xfd(body.v.head<3>()), Wf(body.v.segment<3>(3)) {}
+  Pose<double> f;
+  Eigen::VectorXd xi, xid;
+  Eigen::Vector3d xfd, Wf;
+};
+
+/// Point p's 7 configuration numbers and 6 velocities (header, state()): the one place they are
+/// computed, so that the whole mesh and one element's points agree to the last bit.
+void point_state(const FrameState& b, const MeshReconstruction::Point& p, double* q, double* v) {
+  const Eigen::VectorXd d = p.shape * b.xi, dd = p.shape * b.xid;
+  const Eigen::Vector3d phi = d.tail<3>(), r = p.X + d.head<3>();
+  const Eigen::Matrix3d E = exp_so3(phi);
+  const Eigen::Vector3d x = b.f.x + b.f.R * r;
+  const Eigen::Quaterniond quat(b.f.R * p.R0 * E);
+  Eigen::Map<Eigen::Vector3d> qx(q), vx(v), vw(v + 3);
+  qx = x;
+  q[3] = quat.w();
+  q[4] = quat.x();
+  q[5] = quat.y();
+  q[6] = quat.z();
+  vx = b.xfd + b.f.R * (b.Wf.cross(r) + dd.head<3>());
+  vw = E.transpose() * p.R0.transpose() * b.Wf + tangent_so3(phi) * dd.tail<3>();
 }
 
+}  // namespace
+
 LocalState MeshReconstruction::state(const LocalState& body) const {
-  const Pose<double> f = pose_of(body.q.data());
-  const Eigen::VectorXd xi = body.q.segment(7, m_), xid = body.v.segment(6, m_);
-  const Eigen::Vector3d xfd = body.v.head<3>(), Wf = body.v.segment<3>(3);
+  const FrameState b(body, m_);
   const size_t n = points_.size();
   LocalState s;
   s.t = body.t;
@@ -50,19 +76,7 @@ LocalState MeshReconstruction::state(const LocalState& body) const {
   s.q.resize(7 * static_cast<Eigen::Index>(n));
   s.v.resize(6 * static_cast<Eigen::Index>(n));
   s.qdd = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(n));
-  for (size_t a = 0; a < n; ++a) {
-    const Point& p = points_[a];
-    const Eigen::VectorXd d = p.shape * xi, dd = p.shape * xid;
-    const Eigen::Vector3d phi = d.tail<3>(), r = p.X + d.head<3>();
-    const Eigen::Matrix3d E = exp_so3(phi);
-    const Eigen::Vector3d x = f.x + f.R * r;
-    const Eigen::Quaterniond quat(f.R * p.R0 * E);
-    const Eigen::Index o = 7 * static_cast<Eigen::Index>(a), od = 6 * static_cast<Eigen::Index>(a);
-    s.q.segment<3>(o) = x;
-    s.q.segment<4>(o + 3) << quat.w(), quat.x(), quat.y(), quat.z();
-    s.v.segment<3>(od) = xfd + f.R * (Wf.cross(r) + dd.head<3>());
-    s.v.segment<3>(od + 3) = E.transpose() * p.R0.transpose() * Wf + tangent_so3(phi) * dd.tail<3>();
-  }
+  for (size_t a = 0; a < n; ++a) point_state(b, points_[a], s.q.data() + 7 * a, s.v.data() + 6 * a);
   return s;
 }
 
@@ -93,19 +107,87 @@ LocalState MeshReconstruction::element_state(const LocalState& points, size_t k)
   return s;
 }
 
-std::vector<Eigen::VectorXd> MeshReconstruction::element_outputs(const LocalState& body) const {
-  LocalState mirrored = body;
-  mirrored.q.segment(7, m_) = -body.q.segment(7, m_);
-  const LocalState plus = state(body), minus = state(mirrored);
-  std::vector<Eigen::VectorXd> out(elements_.size());
+namespace {
+
+/// ½ [S(ξ) − S(−ξ)] of one element from its local states at ξ and −ξ (element_outputs()), the
+/// derived results then recomputed from it.
+Eigen::VectorXd odd_part(const Element& e, const LocalState& plus, const LocalState& minus, const MeshReconstruction::Derived& derived) {
   Eigen::VectorXd a, b;
-  for (size_t k = 0; k < elements_.size(); ++k) {
-    elements_[k]->output(element_state(plus, k), a);
-    elements_[k]->output(element_state(minus, k), b);
-    out[k] = 0.5 * (a - b);
-    if (derived_) derived_(out[k]);
-  }
+  e.output(plus, a);
+  e.output(minus, b);
+  Eigen::VectorXd out = 0.5 * (a - b);
+  if (derived) derived(out);
   return out;
+}
+
+LocalState mirrored(const LocalState& body, int m) {
+  LocalState s = body;
+  s.q.segment(7, m) = -body.q.segment(7, m);
+  return s;
+}
+
+}  // namespace
+
+std::vector<Eigen::VectorXd> MeshReconstruction::element_outputs(const LocalState& body) const {
+  const LocalState plus = state(body), minus = state(mirrored(body, m_));
+  std::vector<Eigen::VectorXd> out(elements_.size());
+  for (size_t k = 0; k < elements_.size(); ++k)
+    out[k] = odd_part(*elements_[k], element_state(plus, k), element_state(minus, k), derived_);
+  return out;
+}
+
+Eigen::VectorXd MeshReconstruction::element_output(const LocalState& body, size_t k) const {
+  const Element& e = *elements_.at(k);
+  // The element's own points at ξ and −ξ, in its node order: element_state() of state()'s.
+  auto points = [&](const LocalState& at) {
+    const FrameState b(at, m_);
+    const Eigen::Index nn = static_cast<Eigen::Index>(e.nodes().size());
+    LocalState s;
+    s.t = at.t;
+    s.load_factor = at.load_factor;
+    s.q.resize(7 * nn);
+    s.v.resize(6 * nn);
+    s.qdd = Eigen::VectorXd::Zero(6 * nn);
+    for (Eigen::Index i = 0; i < nn; ++i)
+      point_state(b, points_[static_cast<size_t>(e.nodes()[static_cast<size_t>(i)])], s.q.data() + 7 * i, s.v.data() + 6 * i);
+    return s;
+  };
+  return odd_part(e, points(body), points(mirrored(body, m_)), derived_);
+}
+
+Eigen::Index MeshReconstruction::output_size() const {
+  Eigen::Index width = 0;
+  for (const CellField& f : fields_) width += f.components;
+  return 6 * static_cast<Eigen::Index>(points_.size()) + width * static_cast<Eigen::Index>(elements_.size());
+}
+
+Eigen::Index MeshReconstruction::output_index(size_t k, int c) const {
+  const Eigen::Index ne = static_cast<Eigen::Index>(elements_.size());
+  Eigen::Index at = 6 * static_cast<Eigen::Index>(points_.size());
+  int first = 0;  // the field's first value in the element's own output
+  for (const CellField& f : fields_) {
+    if (c < first + f.components) return at + f.components * static_cast<Eigen::Index>(k) + (c - first);
+    at += f.components * ne;
+    first += f.components;
+  }
+  throw std::out_of_range("mesh reconstruction: an element has no output value " + std::to_string(c));
+}
+
+bool MeshReconstruction::output_cell(Eigen::Index index, size_t& k, int& c) const {
+  const Eigen::Index ne = static_cast<Eigen::Index>(elements_.size());
+  Eigen::Index i = index - 6 * static_cast<Eigen::Index>(points_.size());
+  if (i < 0) return false;
+  int first = 0;
+  for (const CellField& f : fields_) {
+    if (i < f.components * ne) {
+      k = static_cast<size_t>(i / f.components);
+      c = first + static_cast<int>(i % f.components);
+      return true;
+    }
+    i -= f.components * ne;
+    first += f.components;
+  }
+  return false;
 }
 
 }  // namespace alphaflex

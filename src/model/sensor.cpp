@@ -149,10 +149,11 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
     }
     case Kind::ElementOutput: {
       const Element& e = *model.elements()[static_cast<size_t>(element)];
-      // A point of a reduced body's rebuilt mesh (io/types/reduced_mesh_3d.cpp: the output's
-      // point_position, then point_displacement, 3 per point): that point alone. The whole
-      // output rebuilds every point and recovers every element's section forces twice (the odd
-      // part), per sensor and step — on a 170-element rod most of a reduced run's time.
+      // A reduced body's rebuilt mesh (io/types/reduced_mesh_3d.cpp; the layout of
+      // MeshReconstruction::output_index): a point's position or displacement rebuilds that point
+      // alone, an element's result (a section force) that element alone. The whole output rebuilds
+      // every point and recovers every element's section forces twice (the odd part), per sensor
+      // and step — on a 170-element rod most of a reduced run's time.
       if (const MeshReconstruction* mesh = reconstruction_of(e)) {
         const int np = static_cast<int>(mesh->points());
         if (component >= 0 && component < 6 * np) {
@@ -160,6 +161,12 @@ double Sensor::evaluate(const Model& model, const MechanicalState& s) const {
           const int c = component % 3;
           const Eigen::Vector3d x = mesh->point_position(model.local_state(e, s), a);
           return component < 3 * np ? x[c] : x[c] - mesh->point(a).initial[c];
+        }
+        size_t k = 0;
+        int c = 0;
+        if (mesh->output_cell(component, k, c)) {
+          const Eigen::VectorXd cell = mesh->element_output(model.local_state(e, s), k);
+          return c < cell.size() ? cell[c] : 0.0;
         }
       }
       Eigen::VectorXd values;

@@ -13,7 +13,9 @@ issue's measure). Bounds (measured on this scene, docs/benchmarks/reduced.md, wi
 about 2): the tip's displacement and the section forces of the root and middle elements read from
 the rebuilt mesh; the bending moments converge with the modes (16 modes at least 5x closer than 4).
 Checked in the HDF5 results: the rebuilt points are the full run's node positions to within the
-same measure; the rebuilt cells' M2 is the sensor's; /topology/modal_offsets and the attribute
+same measure; the rebuilt cells' M2 and V3 are the section-force sensors' (one element's recovery,
+MeshReconstruction::element_output, against every element's), bit for bit on 1 and 2 ranks, and
+the sensors agree between 1 and 2 ranks; /topology/modal_offsets and the attribute
 modal_bodies name the body and its 4 coordinates; the modal coordinates equal the amplitude nodes'
 q; and the 2-rank results equal the 1-rank results in every new dataset (to 1e-12 relative)."""
 import argparse
@@ -58,7 +60,7 @@ def main():
     full_out, full = run(a, "full", [])
     cb4_out, cb4 = run(a, "cb4", red(4))
     _, cb16 = run(a, "cb16", red(16))
-    cb4_2_out, _ = run(a, "cb4_np2", red(4), np_=2)
+    cb4_2_out, cb4_2 = run(a, "cb4_np2", red(4), np_=2)
     ok = True
 
     def check(cond, what):
@@ -94,12 +96,21 @@ def main():
     order = [int(fconn[0, 0])] + [int(c) for c in fconn[:, 1]]
     worst_x, worst_m2, worst_xi = 0.0, 0.0, 0.0
     L = 0.5
+    # The section-force sensors read one element's recovery (MeshReconstruction::element_output),
+    # the results every element's (element_outputs): the same numbers, bit for bit, on 1 rank and
+    # on 2 (where the body's owner evaluates both).
+    cells = {"root_M2": ("M2", 0), "mid_M2": ("M2", 4), "root_V3": ("V3", 0)}
+    worst_cell = {1: 0.0, 2: 0.0}
     for s in fsteps:
         x_full = fr[s]["node_position"][()][order]
         x_red = rr[s]["reduced_beam_points"][()]
         worst_x = max(worst_x, np.max(np.abs(x_full - x_red)) / L)
         m2 = rr[s]["reduced_beam_M2"][()].ravel()
         worst_m2 = max(worst_m2, abs(m2[0] - cb4["root_M2"][fsteps.index(s)]))
+        for ranks, res, sens in ((1, rr, cb4), (2, r2, cb4_2)):
+            for k, (field, element) in cells.items():
+                cell = res[s][f"reduced_beam_{field}"][()].ravel()[element]
+                worst_cell[ranks] = max(worst_cell[ranks], abs(cell - sens[k][fsteps.index(s)]))
         xi = rr[s]["modal_coordinates"][()].ravel()
         q = rr[s]["q"][()].ravel()
         worst_xi = max(worst_xi, np.max(np.abs(xi - q[-4:])))
@@ -107,6 +118,12 @@ def main():
     check(worst_x < 1e-3, "the rebuilt points follow the full mesh's nodes within 0.1 % of L (measured 2.9e-4)")
     check(worst_m2 == 0.0, "the results' root M2 is the sensor's, bit for bit")
     check(worst_xi == 0.0, "modal_coordinates are the amplitude nodes' coordinates")
+    print(f"section-force sensors vs the results' cells: {worst_cell[1]:.1e} (1 rank), {worst_cell[2]:.1e} (2 ranks)")
+    check(worst_cell[1] == 0.0 and worst_cell[2] == 0.0,
+          "root_M2, mid_M2 and root_V3 equal their elements' cells in the results, bit for bit, on 1 and 2 ranks")
+    worst_sensor = max(np.max(np.abs(cb4_2[k] - cb4[k])) / np.max(np.abs(cb4[k])) for k in cells)
+    print(f"section-force sensors, 2 ranks vs 1 rank: {worst_sensor:.3e}")
+    check(worst_sensor < 1e-12, "the section-force sensors agree between 1 and 2 ranks (1e-12 relative, as the datasets)")
     new = ["reduced_beam_points", "reduced_beam_displacement", "reduced_beam_velocity", "reduced_beam_quaternion",
            "reduced_beam_axis2", "reduced_beam_axis3", "reduced_beam_M2", "reduced_beam_N", "modal_coordinates", "modal_velocities"]
     worst_rank = 0.0

@@ -19,6 +19,7 @@
 #include "alphaflex/elements/beam_section.hpp"
 #include "alphaflex/elements/geometrically_exact_beam.hpp"
 #include "alphaflex/elements/reduced_body.hpp"
+#include "alphaflex/elements/shell.hpp"
 #include "alphaflex/elements/spatial_elements.hpp"
 #include "alphaflex/integrators/generalized_alpha.hpp"
 #include "alphaflex/partition/subdomain.hpp"
@@ -594,6 +595,99 @@ TEST(MeshReconstruction, OnePointsPositionIsTheWholeMeshsToTheLastBit) {
       const Vector3d x = mesh->point_position(s, a);
       for (int c = 0; c < 3; ++c) EXPECT_EQ(x[c], p.q[7 * static_cast<Eigen::Index>(a) + c]) << "point " << a << ", trial " << trial;
     }
+  }
+}
+
+// A section-force sensor of a reduced body reads one element's element_output (model/sensor.cpp),
+// not the whole output's element_outputs: the two must agree to the last bit, for beams and for
+// shells, whose von Mises stresses are recomputed from the recovered resultants (the `derived`
+// results). Also the layout both paths share: output_cell inverts output_index, and the body's
+// whole output holds element_outputs at output_index. The shells' mesh: a 3 × 2 plate of
+// quadrilaterals with arbitrary basis rows (the bit-identity holds for any basis), so that the
+// elements share points in several ways.
+void expect_one_element_is_the_whole_mesh(const MeshReconstruction& mesh, const ReducedBodyMatrices& matrices, const LocalState& s,
+                                          const std::string& what) {
+  const std::vector<VectorXd> all = mesh.element_outputs(s);
+  ASSERT_EQ(all.size(), mesh.elements().size());
+  std::vector<int> coords;
+  for (int i = 0; i < mesh.elastic(); ++i) coords.push_back(1 + i);
+  ReducedBody body("block", 0, coords, matrices, Vector3d::Zero());
+  body.attach_reconstruction(std::shared_ptr<const MeshReconstruction>(&mesh, [](const MeshReconstruction*) {}));
+  VectorXd values;
+  body.output(s, values);
+  ASSERT_EQ(values.size(), mesh.output_size());
+  double largest = 0.0;
+  for (size_t k = 0; k < all.size(); ++k) {
+    const VectorXd one = mesh.element_output(s, k);
+    ASSERT_EQ(one.size(), all[k].size()) << what << ", element " << k;
+    for (Eigen::Index c = 0; c < one.size(); ++c) {
+      EXPECT_EQ(one[c], all[k][c]) << what << ", element " << k << ", value " << c;
+      const Eigen::Index at = mesh.output_index(k, static_cast<int>(c));
+      EXPECT_EQ(values[at], one[c]) << what << ", element " << k << ", value " << c;
+      size_t kk = 0;
+      int cc = -1;
+      EXPECT_TRUE(mesh.output_cell(at, kk, cc));
+      EXPECT_EQ(kk, k);
+      EXPECT_EQ(cc, c);
+      largest = std::max(largest, std::abs(one[c]));
+    }
+  }
+  EXPECT_GT(largest, 0.0) << what << ": the outputs are not all zero";
+  size_t k = 0;
+  int c = 0;
+  EXPECT_FALSE(mesh.output_cell(6 * static_cast<Eigen::Index>(mesh.points()) - 1, k, c)) << "a point's index is no cell's";
+}
+
+TEST(MeshReconstruction, OneElementsOutputIsTheWholeMeshsToTheLastBit) {
+  std::mt19937 rng(1919);
+  const ReducedBar rb(3, 4);
+  const auto bar = bar_mesh(rb);
+  for (int trial = 0; trial < 3; ++trial)
+    expect_one_element_is_the_whole_mesh(*bar, rb.rb.matrices, body_state(rb.rb, rng, 0.05), "beams, trial " + std::to_string(trial));
+
+  // Shells: points (i, j) of a 0.3 m × 0.2 m plate, 0.1 m apart, counter-clockwise quadrilaterals.
+  const int nx = 3, ny = 2, m = 5;
+  const ShellSection section = ShellSection::isotropic(2.1e11, 0.3, 7800, 0.002);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  std::vector<MeshReconstruction::Point> points;
+  std::vector<Pose<double>> rest;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      MeshReconstruction::Point p;
+      p.X = Vector3d(0.1 * i, 0.1 * j, 0.0);
+      p.shape = MatrixXd::NullaryExpr(6, m, [&] { return 0.01 * U(rng); });
+      p.initial = p.X;
+      points.push_back(p);
+      rest.push_back({p.X, Matrix3d::Identity()});
+    }
+  std::vector<std::shared_ptr<const Element>> cells;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i;
+      const std::vector<int> nodes{a, a + 1, a + nx + 2, a + nx + 1};
+      std::vector<Pose<double>> ref;
+      for (int n : nodes) ref.push_back(rest[static_cast<size_t>(n)]);
+      cells.push_back(std::make_shared<const ReissnerMindlinShell>("plate" + std::to_string(cells.size()), nodes, section, ref,
+                                                                   std::vector<Vector3d>(4, Vector3d::UnitZ()), Vector3d::UnitX(),
+                                                                   Vector3d::Zero()));
+    }
+  const double t = section.thickness;
+  const MeshReconstruction plate(points, cells, {}, [t](VectorXd& v) { ReissnerMindlinShell::von_mises_from_resultants(v, t); });
+  // The body's matrices only size its coordinates here (its output is the mesh's): a unit mass
+  // and stiffness, no ξ-dependent inertia.
+  ReducedBodyMatrices matrices;
+  matrices.M0 = MatrixXd::Identity(6 + m, 6 + m);
+  matrices.C.assign(m, MatrixXd::Zero(3, 6 + m));
+  matrices.M2.assign(m * m, Matrix3d::Zero());
+  matrices.K = MatrixXd::Identity(m, m);
+  for (int trial = 0; trial < 3; ++trial) {
+    LocalState s;
+    s.q.resize(7 + m);
+    store_pose(Vector3d(U(rng), U(rng), U(rng)), exp_so3<double>(Vector3d(1.5 * U(rng), 1.5 * U(rng), 1.5 * U(rng))), s.q.data());
+    for (int i = 0; i < m; ++i) s.q[7 + i] = U(rng);
+    s.v = VectorXd::NullaryExpr(6 + m, [&] { return 2.0 * U(rng); });
+    s.qdd = VectorXd::Zero(6 + m);
+    expect_one_element_is_the_whole_mesh(plate, matrices, s, "shells, trial " + std::to_string(trial));
   }
 }
 

@@ -55,7 +55,7 @@ class MeshReconstruction {
   int elastic() const { return m_; }
   /// The elements' structure ("beam") and result fields (the first element's).
   const char* structure() const;
-  std::vector<CellField> cell_fields() const;
+  const std::vector<CellField>& cell_fields() const { return fields_; }
 
   /// The state of every point (7 configuration numbers, 6 velocities each; accelerations zero:
   /// nothing read from here needs them) from the reduced body's local state `body` (the frame
@@ -78,11 +78,26 @@ class MeshReconstruction {
   /// 0.33 N on a 1 N tip-loaded cantilever). The odd part keeps the linear term exactly and
   /// leaves O(|ξ|³); S(0) = 0 (stress-free reference).
   std::vector<Eigen::VectorXd> element_outputs(const LocalState& body) const;
+  /// Element k's results alone (element_outputs()[k], to the last bit: the same expressions on
+  /// the same numbers), for a sensor of one element's section force: only the element's own points
+  /// are rebuilt (at ξ and −ξ) and only it recovers, O(1) per sensor and step instead of O(mesh).
+  Eigen::VectorXd element_output(const LocalState& body, size_t k) const;
+
+  /// The layout of a reduced body's output (elements/reduced_body.hpp, ReducedBody::output):
+  /// point_position (3 per point), point_displacement (3 per point), then each of the elements'
+  /// result fields over all elements — value j of field f of element k at
+  /// 6 n_points + Σ_{g<f} c_g n_elements + c_f k + j. `output_size`: its length; `output_index`:
+  /// where value c of element k's own output (its fields in turn) goes; `output_cell`: the
+  /// inverse for an index past the points' part (false for a point's index).
+  Eigen::Index output_size() const;
+  Eigen::Index output_index(size_t k, int c) const;
+  bool output_cell(Eigen::Index index, size_t& k, int& c) const;
 
  private:
   std::vector<Point> points_;
   std::vector<std::shared_ptr<const Element>> elements_;
   std::vector<std::string> names_;
+  std::vector<CellField> fields_;  // the first element's result fields (cell_fields())
   Derived derived_;
   int m_ = 0;
 };

@@ -91,19 +91,12 @@ bool read_reduced_element_output(const Item& it, Sensor& sn, const std::string& 
                                                          std::to_string(ne) + ", numbered from 0 in mesh order; the block is reduced)");
   // The components of one of the block's elements (all alike): `N`, `M3`, …
   const int c = it.rd.choice(it.keys.node("component"), it.at("component"), mesh.elements().front()->output_names());
-  // ReducedBody::output(): 6 per point, then each field over all elements.
-  int offset = 6 * static_cast<int>(mesh.points()), at = 0;
-  for (const CellField& f : mesh.cell_fields()) {
-    if (c < at + f.components) {
-      offset += f.components * element + (c - at);
-      break;
-    }
-    offset += f.components * ne;
-    at += f.components;
-  }
+  // Its place in ReducedBody::output() (MeshReconstruction::output_index); a sensor reads it
+  // through MeshReconstruction::element_output, that element alone (model/sensor.cpp).
+  const Eigen::Index offset = mesh.output_index(static_cast<size_t>(element), c);
   sn.kind = Sensor::Kind::ElementOutput;
   sn.element = body;
-  sn.component = offset;
+  sn.component = static_cast<int>(offset);
   return true;
 }
 
