@@ -276,12 +276,13 @@ Superelement craig_bampton(const SparseMatrix& K, const SparseMatrix& M, const s
     LowestModes lm;
     if (dense) {
       const Eigen::MatrixXd Kd(Kii), Md(Mii);
-      Psi = -check_held(Kd).solve(Kib);
+      const Eigen::LLT<Eigen::MatrixXd> llt = check_held(Kd);
+      Psi = nb > 0 ? Eigen::MatrixXd(-llt.solve(Kib)) : Eigen::MatrixXd::Zero(ni, 0);
       if (modes > 0) lm = dense_modes(Kd, Md, modes, not_definite);
     } else {
       const Eigen::SimplicialLDLT<SparseMatrix> ldlt(Kii);
       check_held(ldlt);
-      Psi = -ldlt.solve(Kib);
+      Psi = nb > 0 ? Eigen::MatrixXd(-ldlt.solve(Kib)) : Eigen::MatrixXd::Zero(ni, 0);
       if (modes > 0) lm = sparse_modes(Kii, Mii, modes);
     }
     for (size_t i = 0; i < interior.size(); ++i) se.T.row(interior[i]).head(nb) = Psi.row(static_cast<Eigen::Index>(i));
@@ -345,11 +346,16 @@ Superelement herting(const SparseMatrix& K, const SparseMatrix& M, const std::ve
     // Static constraint modes Ψ = −K_ii⁻¹ K_ib (as Craig–Bampton).
     if (dense) {
       const Eigen::MatrixXd Kd(Kii);
-      held([&] { Psi = -check_held(Kd).solve(Kib); });
+      // No interface (a supported block): Ψ has no columns, and Eigen's triangular solve must not
+      // be handed an empty right-hand side (its data pointer is null; UBSan, CI of session 9).
+      held([&] {
+        const Eigen::LLT<Eigen::MatrixXd> llt = check_held(Kd);
+        if (nb > 0) Psi = -llt.solve(Kib);
+      });
     } else {
       const Eigen::SimplicialLDLT<SparseMatrix> ldlt(Kii);
       held([&] { check_held(ldlt); });
-      Psi = -ldlt.solve(Kib);
+      if (nb > 0) Psi = -ldlt.solve(Kib);
     }
   }
   if (modes > 0) {
