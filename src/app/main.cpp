@@ -213,7 +213,7 @@ void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, 
   // replicated part of a parallel run, reported with the summary.
   const double before_mb = resident_mb();
   alphaflex::Scene scene = read_on_every_rank(
-      cl.scene, [&] { return alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD); }, message);
+      cl.scene, [&] { return alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD, cl.outdir); }, message);
 
   if (rank == 0) {
     const auto& p = scene.settings.parameters;
@@ -223,6 +223,7 @@ void run_command(const CommandLine& cl, int rank, int size, MPI_Comm exit_comm, 
               << " (rho_inf = " << std::round(p.rho_infinity() * 1e4) / 1e4
               << "), scaling " << (scene.settings.integrator.scaling ? "on" : "off") << "\n";
     for (const auto& w : scene.warnings) std::cout << "  warning: " << w << "\n";
+    for (const auto& w : scene.superelement_warnings) std::cout << "  warning: " << w << "\n";
   }
   alphaflex::RunOptions opt;
   opt.outdir = cl.outdir;
@@ -309,7 +310,7 @@ int keys_command(int argc, char** argv) {
 // computed together, the table printed by rank 0.
 void modes_command(const CommandLine& cl, int rank, MPI_Comm exit_comm, double exit_timeout, std::string& message) {
   alphaflex::Scene scene = read_on_every_rank(
-      cl.scene, [&] { return alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD); }, message);
+      cl.scene, [&] { return alphaflex::read_scene(cl.scene, cl.overrides, PETSC_COMM_WORLD, cl.outdir); }, message);
   alphaflex::ModalRunOptions opt;
   opt.modes = read_on_every_rank(
       cl.scene, [&] { return alphaflex::read_modal_options(cl.scene, cl.overrides, PETSC_COMM_WORLD); }, message);

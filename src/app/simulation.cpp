@@ -525,6 +525,7 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   if (s.scene_memory_mb >= 0.0) os << ", " << s.scene_memory_mb << " MB of it per rank for the scene's whole model";
   if (s.memory_estimate.known()) os << "; estimated " << s.memory_estimate.total_mb << " MB per rank";
   os << "\n";
+  for (const auto& note : scene.superelements) os << "  superelement        " << note << "\n";
   if (!s.restarted_from.empty()) os << "  restarted from      " << s.restarted_from << " (t = " << s.restart_time << " s)\n";
   if (s.checkpoints > 0)
     os << "  checkpoints         " << s.checkpoints << " written (" << std::setprecision(3) << s.checkpoint_bytes / 1e6

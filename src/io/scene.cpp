@@ -163,6 +163,8 @@ const Schema& output_schema() {
       {"every", KeyType::Integer, "steps", "1", "write the fields to NAME.h5 every N steps. The initial state (t = 0) and the last step are always written. Sensors (NAME.csv): every step, or see `sensors_dt`", Range::closed(1, 1000000)},
       {"dt", KeyType::Number, "s", "none", "write the fields at t = k·dt (and at t_end). Fixed steps: dt must be a multiple of `solver.h` (it sets `every`); adaptive steps (`solver.tolerance`) are shortened to land on these times. Not together with `every`", Range::positive(), "output interval (s)"},
       {"hdf5", KeyType::Flag, "–", "on", "write NAME.h5 and NAME.xdmf; with `off` only NAME.csv"},
+      {"superelement_cache", KeyType::Flag, "–", "on",
+       "keep the superelements of the reduced blocks (`beams`/`shells` with `reduction`) in OUTDIR/NAME.superelements.h5, under a key of everything they depend on (the block's elements, nodes and frames, sections and materials, the reduction keys): a later run with the same key reads them instead of reducing (the same results to the last bit; the summary says which blocks were read). A mismatch or an unreadable file is computed again (with a warning naming the file) and the file rewritten; `off`: every run reduces (docs/results.md)"},
       {"sensors", KeyType::Flag, "–", "on",
        "write NAME.csv; with `off` no sensor rows are written (nor evaluated, except at the end for the summary) — for benchmarks and sweeps that need only the summary or the fields"},
       {"sensors_dt", KeyType::Number, "s", "none (every step)",
@@ -325,6 +327,7 @@ void read_output(Reader& rd, const YAML::Node& node, RunSettings& rs) {
     rs.output_dt = o.number("dt");
   }
   rs.hdf5 = o.flag("hdf5", rs.hdf5);
+  rs.superelement_cache = o.flag("superelement_cache", rs.superelement_cache);
 }
 
 }  // namespace
@@ -411,7 +414,7 @@ void read_sensors(Reader& rd, SceneBuilder& sb, const YAML::Node& list, const sc
 }
 
 Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& mesh_loader,
-            const std::vector<std::pair<YAML::Node, std::string>>& overrides) {
+            const std::vector<std::pair<YAML::Node, std::string>>& overrides, const std::string& outdir, MPI_Comm comm) {
   Reader rd(label, mesh_loader);
   for (const auto& [node, text] : overrides) rd.add_override(node, text);
   Scene scene;
@@ -452,6 +455,11 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   scene.model = std::make_unique<Model>();
   scene.model->name = scene.name;
   SceneBuilder sb(rd, *scene.model);
+  // The reduced blocks' superelements beside the results (io/superelement_cache.hpp).
+  SuperelementCache superelements(
+      outdir.empty() || !rs.superelement_cache ? std::string() : (std::filesystem::path(outdir) / (scene.name + ".superelements.h5")).string(),
+      comm);
+  sb.superelements = &superelements;
   scene_detail::begin_sensor_feedback(sb);
   if (rs.dimension == 2) {
     const Eigen::Vector2d gravity = rd.vec2(root, "gravity", "", Eigen::Vector2d::Zero());
@@ -472,6 +480,9 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
   rs.breakpoints = rd.breakpoints();
   std::sort(rs.breakpoints.begin(), rs.breakpoints.end());
   rs.breakpoints.erase(std::unique(rs.breakpoints.begin(), rs.breakpoints.end()), rs.breakpoints.end());
+  superelements.finish();
+  scene.superelements = superelements.notes();
+  scene.superelement_warnings = superelements.warnings();
   return scene;
 }
 
@@ -528,7 +539,8 @@ YAML::Node parse_scene_text(const std::string& text, const std::string& label) {
 }
 
 Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
-           const std::vector<std::string>& overrides, const MeshLoader& mesh_loader = read_mesh) {
+           const std::vector<std::string>& overrides, const MeshLoader& mesh_loader = read_mesh, const std::string& outdir = "",
+           MPI_Comm comm = MPI_COMM_SELF) {
   YAML::Node root;
   try {
     root = parse();
@@ -538,7 +550,7 @@ Scene load(const std::function<YAML::Node()>& parse, const std::string& label,
   std::vector<std::pair<YAML::Node, std::string>> applied;
   for (const auto& o : overrides) applied.emplace_back(input::apply_override(root, o, "--set", label), o);
   try {
-    return build(root, label, mesh_loader, applied);
+    return build(root, label, mesh_loader, applied, outdir, comm);
   } catch (const YAML::Exception& e) {
     throw InputError(label + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
@@ -593,7 +605,7 @@ std::string broadcast_text(const std::string& text, MPI_Comm comm) {
   return out;
 }
 
-Scene read_scene(const std::string& path, const std::vector<std::string>& overrides, MPI_Comm comm) {
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides, MPI_Comm comm, const std::string& outdir) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -604,7 +616,7 @@ Scene read_scene(const std::string& path, const std::vector<std::string>& overri
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open the scene file");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return load([&] { return parse_scene_text(text, path); }, path, overrides);
+    return load([&] { return parse_scene_text(text, path); }, path, overrides, read_mesh, outdir, comm);
   }
   // Rank 0 reads the file and the mesh; every rank parses the same text, so every rank reaches the
   // mesh (or fails with the same message) at the same point, and gmsh runs once per run.
@@ -627,7 +639,7 @@ Scene read_scene(const std::string& path, const std::vector<std::string>& overri
     const std::string b = broadcast_text(std::string(bytes.begin(), bytes.end()), comm);
     return rank == 0 ? unpack(bytes) : unpack(std::vector<char>(b.begin(), b.end()));
   };
-  return load([&] { return parse_scene_text(text, path); }, path, overrides, from_rank0);
+  return load([&] { return parse_scene_text(text, path); }, path, overrides, from_rank0, outdir, comm);
 }
 
 Scene read_scene_text(const std::string& yaml, const std::string& label, const std::vector<std::string>& overrides) {

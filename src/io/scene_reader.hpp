@@ -20,6 +20,7 @@
 #include "alphaflex/core/time_function.hpp"
 #include "alphaflex/io/scene.hpp"
 #include "alphaflex/io/schema.hpp"
+#include "alphaflex/io/superelement_cache.hpp"
 #include "alphaflex/mesh/gmsh_reader.hpp"
 #include "alphaflex/model/planar_marker.hpp"
 
@@ -92,6 +93,7 @@ class SceneBuilder {
   std::map<std::string, MeshGroup> mesh_groups;  ///< the mesh's physical groups by name
   MeshBlocks blocks;                           ///< while `beams` and `shells` are read
   std::map<std::string, std::string> reduced_points;  ///< named mesh points without a node → their reduced block
+  SuperelementCache* superelements = nullptr;  ///< where reduced blocks are kept (types/reduced_beams_3d.cpp); none: computed
 
   /// The mesh group named by the section's key `key` (of dimension `dim`, if ≥ 0), all of whose
   /// nodes are model nodes; clear errors otherwise.

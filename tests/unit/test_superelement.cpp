@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <numeric>
 #include <memory>
 #include <random>
 #include <stdexcept>
@@ -25,6 +27,7 @@
 #include "alphaflex/partition/subdomain.hpp"
 #include "alphaflex/solvers/linear_solver.hpp"
 #include "alphaflex/assembly/saddle_point_system.hpp"
+#include "alphaflex/io/superelement_cache.hpp"
 #include "alphaflex/modal/superelement.hpp"
 #include "test_support.hpp"
 #include "alphaflex/model/model.hpp"
@@ -270,6 +273,7 @@ TEST(RigidMassProperties, UniformBarHasTheTextbookMassCentreAndInertia) {
 
 }  // namespace
 }  // namespace alphaflex
+
 
 // ============================================================== the reduced body (floating frame)
 namespace alphaflex {
@@ -1038,6 +1042,60 @@ TEST(ReducedBodyGeometricStiffness, TensionStiffensTheCantileverAsTheFullMeshAnd
   EXPECT_NEAR(r_cm, 1.0 / (1.0 + 0.4 * kL * kL), 0.01);               // Rayleigh quotient of the cubic shape
   EXPECT_NEAR(r_4, r_full, 0.01 * r_full);
   EXPECT_NEAR(r_all, r_full, 1e-4 * r_full);                          // the cubic truncation of the mesh's own energy
+}
+
+
+// The superelement cache's byte form (io/superelement_cache.hpp; what rank 0 sends and what the
+// file's datasets hold): every field of a reduced block, geometric stiffness T and Q included,
+// comes back to the last bit, and bytes that are cut off, run on, or claim more entries than they
+// hold are refused with std::invalid_argument (a corrupt cache is recomputed, never read).
+TEST(SuperelementCache, ByteFormKeepsEveryFieldToTheLastBitAndRefusesCorruptBytes) {
+  ReducedBar rb(3, 4);
+  nonlinear_stiffness(rb.bar.model, rb.bar.elements, rb.block, rb.rb);
+  ReducedBlock& b = rb.rb;
+  const int m = b.matrices.elastic();
+  ASSERT_GT(m, 3);
+  ASSERT_FALSE(b.matrices.T.empty());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  if (b.matrices.Q.empty()) b.matrices.Q = SymmetricTensor(4, m, [&](int, int, int, int) { return U(rng); });
+  const std::string bytes = pack_reduced_block(b);
+  const ReducedBlock c = unpack_reduced_block(bytes);
+  EXPECT_EQ(c.frame_node, b.frame_node);
+  EXPECT_EQ(c.superelement.boundary, b.superelement.boundary);
+  EXPECT_TRUE(c.superelement.T == b.superelement.T && c.superelement.K == b.superelement.K && c.superelement.M == b.superelement.M);
+  EXPECT_TRUE(c.superelement.frequencies == b.superelement.frequencies);
+  EXPECT_TRUE(c.matrices.M0 == b.matrices.M0 && c.matrices.K == b.matrices.K);
+  ASSERT_EQ(c.matrices.C.size(), b.matrices.C.size());
+  for (size_t i = 0; i < c.matrices.C.size(); ++i) EXPECT_TRUE(c.matrices.C[i] == b.matrices.C[i]);
+  ASSERT_EQ(c.matrices.M2.size(), b.matrices.M2.size());
+  for (size_t i = 0; i < c.matrices.M2.size(); ++i) EXPECT_TRUE(c.matrices.M2[i] == b.matrices.M2[i]);
+  EXPECT_EQ(c.matrices.T.values(), b.matrices.T.values());
+  EXPECT_EQ(c.matrices.Q.values(), b.matrices.Q.values());
+  EXPECT_EQ(c.matrices.Q(1, 0, 2, 1), b.matrices.Q(0, 1, 1, 2));  // the contraction plan is rebuilt
+  ASSERT_EQ(c.shapes.size(), b.shapes.size());
+  for (size_t a = 0; a < c.shapes.size(); ++a)
+    EXPECT_TRUE(c.shapes[a] == b.shapes[a] && c.positions[a] == b.positions[a] && c.rotations[a] == b.rotations[a]);
+  EXPECT_EQ(pack_reduced_block(c), bytes);
+  // The same body's residual from both, bit for bit.
+  std::vector<int> coords(static_cast<size_t>(m));
+  std::iota(coords.begin(), coords.end(), 1);
+  const ReducedBody e1("b", 0, coords, b.matrices, Vector3d(0, 0, -9.81)), e2("b", 0, coords, c.matrices, Vector3d(0, 0, -9.81));
+  LocalState s = body_state(b, rng, 1e-2);
+  LocalResidual r1, r2;
+  r1.reset(6 + m, true);
+  r2.reset(6 + m, true);
+  e1.evaluate(s, r1, true);
+  e2.evaluate(s, r2, true);
+  EXPECT_TRUE(r1.r == r2.r && r1.K == r2.K);
+  // Corrupt bytes.
+  EXPECT_THROW(unpack_reduced_block(bytes.substr(0, bytes.size() - 1)), std::invalid_argument);
+  EXPECT_THROW(unpack_reduced_block(bytes + "x"), std::invalid_argument);
+  EXPECT_THROW(unpack_reduced_block(std::string()), std::invalid_argument);
+  std::string huge = bytes;
+  const unsigned long long count = 1ull << 60;  // the first field's shape count
+  std::memcpy(huge.data(), &count, sizeof count);
+  EXPECT_THROW(unpack_reduced_block(huge), std::invalid_argument);
 }
 
 }  // namespace

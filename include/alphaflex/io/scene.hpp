@@ -59,6 +59,9 @@ struct RunSettings {
   double checkpoint_wall = 0.0;
   int checkpoint_keep = 1;
   bool checkpoint_at_end = true;  ///< output.checkpoint_at_end: a checkpoint when the run ends
+  /// output.superelement_cache: reduced blocks kept in OUTDIR/NAME.superelements.h5 and read from
+  /// there by a later run with the same key (io/superelement_cache.hpp).
+  bool superelement_cache = true;
 };
 
 struct Scene {
@@ -68,14 +71,20 @@ struct Scene {
   RunSettings settings;
   std::unique_ptr<Model> model;
   std::vector<std::string> warnings;  ///< parameter checks (eq. 17, 18, 20)
+  /// Per reduced block, where its superelement came from (read from the cache, or computed and
+  /// its CPU time), for the summary; and the cache files that could not be read or written.
+  std::vector<std::string> superelements, superelement_warnings;
 };
 
 /// Reads and validates a scene. `overrides` are "key.path=value" strings (from --set) applied to
 /// the YAML tree before validation, so they are checked like the file itself. Collective over
 /// `comm`: rank 0 reads the file and its mesh (gmsh) and sends them; every rank builds the same
-/// model, and a failure is the same InputError on every rank.
+/// model, and a failure is the same InputError on every rank. `outdir`: where the run writes its
+/// results; its reduced blocks are then kept in OUTDIR/NAME.superelements.h5 and read from there
+/// by the next run with the same key (io/superelement_cache.hpp; `output.superelement_cache: off`:
+/// not). Empty: every reduced block is computed.
 Scene read_scene(const std::string& path, const std::vector<std::string>& overrides = {},
-                 MPI_Comm comm = MPI_COMM_SELF);
+                 MPI_Comm comm = MPI_COMM_SELF, const std::string& outdir = "");
 
 /// `text` of rank 0 on every rank of `comm` (collective).
 std::string broadcast_text(const std::string& text, MPI_Comm comm);

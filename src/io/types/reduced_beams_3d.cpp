@@ -142,8 +142,20 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
   const BlockMatrices matrices = assemble_block(scratch, elements, /*dense=*/false);  // sparse only: O(n) memory
   ReducedBlock rb;
   try {
-    rb = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes, inertia_modes, basis);
-    if (geometric) nonlinear_stiffness(scratch, elements, matrices, rb);
+    const auto reduce = [&] {
+      ReducedBlock r = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes, inertia_modes, basis);
+      if (geometric) nonlinear_stiffness(scratch, elements, matrices, r);
+      return r;
+    };
+    // Read from OUTDIR/NAME.superelements.h5 when a run reduced this body before with the same key
+    // (io/superelement_cache.hpp): the items' keys (this block's and those of `blocks`), its
+    // interface points, the scratch nodes and elements, K and M.
+    std::string settings = "block " + it.name + "\n" + YAML::Dump(it.node);
+    for (const Item& m : more) settings += "\nwith block " + m.name + "\n" + YAML::Dump(m.node);
+    settings += "\ninterface";
+    for (int m : mesh_interface) settings += " " + std::to_string(m);
+    rb = it.sb.superelements ? it.sb.superelements->find_or_reduce(it.name, SuperelementKey(settings, scratch, elements, matrices), reduce)
+                             : reduce();
   } catch (const std::invalid_argument& e) {
     it.rd.fail(rn, at, "block '" + it.name + "': " + e.what());
   } catch (const SolverError& e) {
