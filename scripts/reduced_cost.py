@@ -71,6 +71,8 @@ def error(ref, x, key):
 VARIANTS = {
     "linear": ["--study-set", "reduce.geometric_stiffness=off", "--study-set", "reduce.static_modes=none"],
     "geometric": ["--study-set", "reduce.geometric_stiffness=on", "--study-set", "reduce.static_modes=inertia"],
+    # Geometric stiffness with the modal derivatives of the first N basis vectors (--derivatives).
+    "derivatives": ["--study-set", "reduce.geometric_stiffness=on", "--study-set", "reduce.static_modes=none"],
 }
 
 
@@ -80,6 +82,8 @@ def run_study(a, out, variant):
     for s in a.set or []:
         cmd += ["--set", s]
     cmd += VARIANTS[variant]
+    if variant == "derivatives":
+        cmd += ["--study-set", f"reduce.derivatives={a.derivatives}"]
     done = subprocess.run(cmd, capture_output=True, text=True)
     if done.returncode != 0:
         sys.exit("failed: " + " ".join(cmd) + "\n" + done.stdout + done.stderr)
@@ -133,7 +137,8 @@ def main():
     p.add_argument("--study", help="a fidelity study file: run its ladder instead (see above)")
     p.add_argument("--set", action="append", help="with --study: a scene --set (repeatable), e.g. mesh.elements=85")
     p.add_argument("--ladder", default="2,4,8", help="with --study: the reduced rungs (the full rung is added)")
-    p.add_argument("--variants", default="linear,geometric", help="with --study: linear, geometric or both")
+    p.add_argument("--variants", default="linear,geometric", help="with --study: linear, geometric, derivatives (comma-separated)")
+    p.add_argument("--derivatives", type=int, default=6, help="the variant `derivatives`: reduce.derivatives (default 6)")
     p.add_argument("--exe", required=True)
     p.add_argument("--scene", default=os.path.join(ROOT, "tests/cli/reduced_pendulum.yaml"))
     p.add_argument("--elements", type=int, default=170)

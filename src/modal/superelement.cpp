@@ -535,6 +535,8 @@ void add_inertia_modes(const Model& model, const BlockMatrices& block, int frame
   se.M = 0.5 * (se.M + se.M.transpose()).eval();
 }
 
+void complete_block(const Model& model, const BlockMatrices& block, ReducedBlock& rb);
+
 }  // namespace
 
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
@@ -606,6 +608,27 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
     rb.superelement = herting_basis ? herting(Kc, Mc, boundary, modes) : craig_bampton(Kc, Mc, boundary, modes);
   }
   if (inertia_modes) add_inertia_modes(model, block, frame_node, keep, position, Kc, Mc, rb.superelement);
+  complete_block(model, block, rb);
+  return rb;
+}
+
+namespace {
+
+// The rest of a ReducedBlock from its basis rb.superelement (on the block's coordinates without
+// the frame node's) and rb.frame_node: the nodes' data (X, R̄, Φ rows) and the inertia invariants.
+// Whatever these held before is replaced.
+void complete_block(const Model& model, const BlockMatrices& block, ReducedBlock& rb) {
+  const int n = block.size(), frame_node = rb.frame_node;
+  const int f0 = block.row_of(frame_node);
+  std::vector<int> keep;
+  for (int r = 0; r < n; ++r)
+    if (r < f0 || r >= f0 + 6) keep.push_back(r);
+  const int nk = static_cast<int>(keep.size());
+  const SparseMatrix& Ms = block.M_sparse;
+  rb.positions.clear();
+  rb.rotations.clear();
+  rb.shapes.clear();
+  rb.matrices = ReducedBodyMatrices();
   const Superelement& se = rb.superelement;
   const int m = static_cast<int>(se.T.cols());
   // Φ on all block rows (zero on the frame node's).
@@ -654,76 +677,198 @@ ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int fr
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < m; ++j) d.M2.push_back(D[static_cast<size_t>(i)].transpose() * MD[static_cast<size_t>(j)]);
   d.K = se.K;
-  return rb;
 }
 
+}  // namespace
 
-void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, ReducedBlock& rb,
-                         double* asymmetry) {
-  const int m = rb.matrices.elastic();
-  const size_t nn = block.nodes.size();
-  const Pose<double> F = pose_of(model.node(rb.frame_node).q0.data());
-  MechanicalState s0 = model.initial_state();
-  s0.v.setZero();
-  s0.qdd.setZero();
-  std::vector<int> conf(nn);
-  for (size_t a = 0; a < nn; ++a) conf[a] = model.confs_of({block.nodes[a]}).front();
-  // The block's size: the scale of the difference steps.
-  double size = 0.0;
-  for (const Eigen::Vector3d& X : rb.positions) size = std::max(size, X.norm());
-  if (size <= 0.0) size = 1.0;
-  // Each element's configuration entries in the state and its residual's rows in the block.
-  std::vector<std::vector<int>> confs, rows;
-  for (int e : element_ids) {
-    const Element& el = *model.elements()[static_cast<size_t>(e)];
-    confs.push_back(model.confs_of(el.nodes()));
-    rows.emplace_back();
-    for (int node : el.nodes())
-      for (int c = 0; c < model.node(node).ndof; ++c) rows.back().push_back(block.row_of(node, c));
+
+namespace {
+
+// The block's internal forces at the poses the reduced body gives its nodes for amplitudes ξ
+// (ReducedBlock::node_pose, the frame at its initial pose): `full` on the block's rows (δx world,
+// δθ node frame, as BlockMatrices), `projected` f̃(ξ) = Σₐ (R_f Φᵗₐ)ᵀ fₓ,ₐ + (T(φₐ) Φʳₐ)ᵀ f_θ,ₐ
+// through the derivative of node_pose (nonlinear_stiffness, add_modal_derivatives).
+class BlockForces {
+ public:
+  BlockForces(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, const ReducedBlock& rb)
+      : model_(model), ids_(element_ids), block_(block), rb_(rb), F_(pose_of(model.node(rb.frame_node).q0.data())), s0_(model.initial_state()) {
+    const size_t nn = block.nodes.size();
+    s0_.v.setZero();
+    s0_.qdd.setZero();
+    conf_.resize(nn);
+    for (size_t a = 0; a < nn; ++a) conf_[a] = model.confs_of({block.nodes[a]}).front();
+    // The block's size: the scale of the difference steps.
+    for (const Eigen::Vector3d& X : rb.positions) size_ = std::max(size_, X.norm());
+    if (size_ <= 0.0) size_ = 1.0;
+    // Each element's configuration entries in the state and its residual's rows in the block.
+    for (int e : element_ids) {
+      const Element& el = *model.elements()[static_cast<size_t>(e)];
+      confs_.push_back(model.confs_of(el.nodes()));
+      rows_.emplace_back();
+      for (int node : el.nodes())
+        for (int c = 0; c < model.node(node).ndof; ++c) rows_.back().push_back(block.row_of(node, c));
+    }
+    block_rows_ = static_cast<Eigen::Index>(block.offsets.back() + model.node(block.nodes.back()).ndof);
   }
-  const Eigen::Index block_rows = static_cast<Eigen::Index>(block.offsets.back() + model.node(block.nodes.back()).ndof);
-  // f̃(ξ) = Σₐ (R_f Φᵗₐ)ᵀ fₓ,ₐ + (T(φₐ) Φʳₐ)ᵀ f_θ,ₐ: the block's internal forces at the nodes
-  // (δx world, δθ node frame, as BlockMatrices) through the derivative of node_pose.
-  const auto projected_force = [&](const Eigen::VectorXd& xi) {
-    MechanicalState s = s0;
-    std::vector<Eigen::Vector3d> phi(nn);
+  double size() const { return size_; }
+
+  Eigen::VectorXd full(const Eigen::VectorXd& xi, std::vector<Eigen::Vector3d>* phi = nullptr) const {
+    const size_t nn = block_.nodes.size();
+    MechanicalState s = s0_;
+    if (phi) phi->resize(nn);
     for (size_t a = 0; a < nn; ++a) {
       Eigen::Vector3d x;
       Eigen::Matrix3d R;
-      rb.node_pose(a, F.x, F.R, xi, x, R);
-      phi[a] = rb.shapes[a].bottomRows<3>() * xi;
+      rb_.node_pose(a, F_.x, F_.R, xi, x, R);
+      if (phi) (*phi)[a] = rb_.shapes[a].bottomRows<3>() * xi;
       const Eigen::Quaterniond qa(R);
-      s.q.segment<3>(conf[a]) = x;
-      s.q[conf[a] + 3] = qa.w();
-      s.q[conf[a] + 4] = qa.x();
-      s.q[conf[a] + 5] = qa.y();
-      s.q[conf[a] + 6] = qa.z();
+      s.q.segment<3>(conf_[a]) = x;
+      s.q[conf_[a] + 3] = qa.w();
+      s.q[conf_[a] + 4] = qa.x();
+      s.q[conf_[a] + 5] = qa.y();
+      s.q[conf_[a] + 6] = qa.z();
     }
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(block_rows));
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(block_rows_);
     Eigen::VectorXd r;
-    for (size_t b = 0; b < element_ids.size(); ++b) {
-      const Element& el = *model.elements()[static_cast<size_t>(element_ids[b])];
+    for (size_t b = 0; b < ids_.size(); ++b) {
+      const Element& el = *model_.elements()[static_cast<size_t>(ids_[b])];
       // The elastic force alone (Element::internal_force: no inertia terms, which vanish at rest
       // but cost most of a beam's evaluation); an element without it, evaluated whole at rest.
-      if (!el.internal_force(gather(s.q, confs[b]), r)) {
-        LocalState ls = model.local_state(el, s);
+      if (!el.internal_force(gather(s.q, confs_[b]), r)) {
+        LocalState ls = model_.local_state(el, s);
         ls.load_factor = 0.0;  // no applied load, no gravity
         LocalResidual out;
         out.reset(static_cast<int>(ls.v.size()), false);
         el.evaluate(ls, out, false);
         r = out.r;
       }
-      for (size_t k = 0; k < rows[b].size(); ++k) f[rows[b][k]] += r[static_cast<Eigen::Index>(k)];
+      for (size_t k = 0; k < rows_[b].size(); ++k) f[rows_[b][k]] += r[static_cast<Eigen::Index>(k)];
     }
-    Eigen::VectorXd ft = Eigen::VectorXd::Zero(m);
-    for (size_t a = 0; a < nn; ++a) {
-      const int o = block.offsets[a];
-      const Eigen::Matrix<double, 3, Eigen::Dynamic> Bx = F.R * rb.shapes[a].topRows<3>();
-      const Eigen::Matrix<double, 3, Eigen::Dynamic> Bt = tangent_so3<double>(phi[a]) * rb.shapes[a].bottomRows<3>();
+    return f;
+  }
+
+  Eigen::VectorXd projected(const Eigen::VectorXd& xi) const {
+    std::vector<Eigen::Vector3d> phi;
+    const Eigen::VectorXd f = full(xi, &phi);
+    Eigen::VectorXd ft = Eigen::VectorXd::Zero(xi.size());
+    for (size_t a = 0; a < block_.nodes.size(); ++a) {
+      const int o = block_.offsets[a];
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> Bx = F_.R * rb_.shapes[a].topRows<3>();
+      const Eigen::Matrix<double, 3, Eigen::Dynamic> Bt = tangent_so3<double>(phi[a]) * rb_.shapes[a].bottomRows<3>();
       ft += Bx.transpose() * f.segment<3>(o) + Bt.transpose() * f.segment<3>(o + 3);
     }
     return ft;
-  };
+  }
+
+ private:
+  const Model& model_;
+  const std::vector<int>& ids_;
+  const BlockMatrices& block_;
+  const ReducedBlock& rb_;
+  Pose<double> F_;
+  MechanicalState s0_;
+  std::vector<int> conf_;
+  std::vector<std::vector<int>> confs_, rows_;
+  double size_ = 0.0;
+  Eigen::Index block_rows_ = 0;
+};
+
+}  // namespace
+
+int add_modal_derivatives(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, int columns,
+                          ReducedBlock& rb) {
+  const int m = rb.matrices.elastic();
+  if (columns < 0 || columns > m) {
+    std::ostringstream os;
+    os << "asks for the modal derivatives of " << columns << " basis vectors; the basis has " << m;
+    throw std::invalid_argument(os.str());
+  }
+  if (columns == 0) return 0;
+  const BlockForces forces(model, element_ids, block, rb);
+  const int n = block.size(), f0 = block.row_of(rb.frame_node);
+  std::vector<int> keep;
+  for (int r = 0; r < n; ++r)
+    if (r < f0 || r >= f0 + 6) keep.push_back(r);
+  const int nk = static_cast<int>(keep.size());
+  const SparseMatrix Kc = submatrix(block.K_sparse, keep, keep), Mc = submatrix(block.M_sparse, keep, keep);
+  Superelement& se = rb.superelement;
+  const int nb = se.interface_size();
+  std::vector<char> is_boundary(static_cast<size_t>(nk), 0);
+  for (int r : se.boundary) is_boundary[static_cast<size_t>(r)] = 1;
+  std::vector<int> interior;
+  for (int r = 0; r < nk; ++r)
+    if (!is_boundary[static_cast<size_t>(r)]) interior.push_back(r);
+  if (interior.empty()) return 0;
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(submatrix(Kc, interior, interior));
+  check_held(ldlt);
+  // Difference steps as nonlinear_stiffness: 10⁻³ of the block's size in each direction's largest
+  // displacement (a rotation counted by its lever, the block's size).
+  const double size = forces.size();
+  Eigen::VectorXd h(m);
+  for (int i = 0; i < m; ++i) {
+    double big = 0.0;
+    for (size_t a = 0; a < block.nodes.size(); ++a)
+      big = std::max({big, rb.shapes[a].col(i).head<3>().cwiseAbs().maxCoeff(), size * rb.shapes[a].col(i).tail<3>().cwiseAbs().maxCoeff()});
+    h[i] = 1e-3 * size / std::max(big, 1e-300);
+  }
+  const Eigen::VectorXd zero = forces.full(Eigen::VectorXd::Zero(m));
+  const auto unit = [&](int i) { return Eigen::VectorXd(Eigen::VectorXd::Unit(m, i) * h[i]); };
+  // θᵢⱼ: K_ii θ = −(∂²f/∂ξᵢ∂ξⱼ)_i on the interior, zero on the interface rows (held, as the
+  // constraint modes hold them: the interface rows of the basis stay [I, 0]).
+  std::vector<Eigen::VectorXd> theta;
+  double largest = 0.0;
+  for (int i = 0; i < columns; ++i)
+    for (int j = i; j < columns; ++j) {
+      Eigen::VectorXd d2;
+      if (i == j) {
+        d2 = (forces.full(unit(i)) - 2.0 * zero + forces.full(-unit(i))) / (h[i] * h[i]);
+      } else {
+        const Eigen::VectorXd a = unit(i), b = unit(j);
+        d2 = (forces.full(a + b) - forces.full(a - b) - forces.full(b - a) + forces.full(-a - b)) / (4.0 * h[i] * h[j]);
+      }
+      Eigen::VectorXd gi(static_cast<Eigen::Index>(interior.size()));
+      for (size_t r = 0; r < interior.size(); ++r) gi[static_cast<Eigen::Index>(r)] = d2[keep[static_cast<size_t>(interior[r])]];
+      const Eigen::VectorXd ti = -ldlt.solve(gi);
+      Eigen::VectorXd t = Eigen::VectorXd::Zero(nk);
+      for (size_t r = 0; r < interior.size(); ++r) t[interior[r]] = ti[static_cast<Eigen::Index>(r)];
+      largest = std::max(largest, std::sqrt(t.dot(Mc * t)));
+      theta.push_back(std::move(t));
+    }
+  // M-orthonormalized against the normal (and inertia) modes and each other, as add_inertia_modes;
+  // a derivative below 10⁻⁶ of the largest (a pair whose curvature does not strain the block, e.g.
+  // a rigid motion of the interface) or dependent on the others (to 10⁻⁶) is dropped.
+  const Eigen::Index nm = se.T.cols() - nb;
+  std::vector<Eigen::VectorXd> added;
+  for (Eigen::VectorXd s : theta) {
+    const double before = std::sqrt(s.dot(Mc * s));
+    if (!(before > 1e-6 * largest)) continue;
+    for (int pass = 0; pass < 2; ++pass) {
+      if (nm > 0) s -= se.T.rightCols(nm) * (se.T.rightCols(nm).transpose() * (Mc * s));
+      for (const Eigen::VectorXd& v : added) s -= v * v.dot(Mc * s);
+    }
+    const double after = std::sqrt(s.dot(Mc * s));
+    if (after < 1e-6 * before) continue;
+    added.push_back(s / after);
+  }
+  const Eigen::Index n0 = se.T.cols();
+  se.T.conservativeResize(Eigen::NoChange, n0 + static_cast<Eigen::Index>(added.size()));
+  for (size_t k = 0; k < added.size(); ++k) se.T.col(n0 + static_cast<Eigen::Index>(k)) = added[k];
+  const Eigen::MatrixXd KT = Kc * se.T, MT = Mc * se.T;
+  se.K = se.T.transpose() * KT;
+  se.M = se.T.transpose() * MT;
+  se.K = 0.5 * (se.K + se.K.transpose()).eval();
+  se.M = 0.5 * (se.M + se.M.transpose()).eval();
+  complete_block(model, block, rb);
+  return static_cast<int>(added.size());
+}
+
+void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, ReducedBlock& rb,
+                         double* asymmetry) {
+  const int m = rb.matrices.elastic();
+  const size_t nn = block.nodes.size();
+  const BlockForces forces(model, element_ids, block, rb);
+  const double size = forces.size();
+  const auto projected_force = [&](const Eigen::VectorXd& xi) { return forces.projected(xi); };
   // The stencils below meet the same points again (±hⱼeⱼ in T's diagonal and in every Q term with
   // two equal indices, whose signs cancel exactly): each distinct ξ is evaluated once — the same
   // values, so the tensors are unchanged to the last bit (m = 14: 4061 evaluations for 4872).

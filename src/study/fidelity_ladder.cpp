@@ -68,6 +68,7 @@ std::vector<std::string> rung_overrides(const ReductionLadder& ladder, const std
     // The rigid rung keeps no elastic amplitude: the reader refuses both keys on it.
     if (step != "rigid" && ladder.geometric_stiffness) r["geometric_stiffness"] = "on";
     if (step != "rigid" && ladder.static_modes != "none") r["static_modes"] = ladder.static_modes;
+    if (step != "rigid" && ladder.derivatives > 0) r["derivatives"] = ladder.derivatives;
     YAML::Emitter out;
     out << YAML::Flow << r;
     o.push_back(ladder.block_paths[b] + ".reduction=" + out.c_str());

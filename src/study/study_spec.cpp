@@ -91,6 +91,7 @@ const Schema kReduce{"study.reduce", {
     {"method", KeyType::Choice, "–", "`craig_bampton`", "the reduction of the rungs with k modes (`reduction.method` of the block)", {}, "", "", {"craig_bampton", "herting"}},
     {"geometric_stiffness", KeyType::Flag, "–", "off", "on: every reduced rung's blocks get `reduction.geometric_stiffness: on` (stress stiffening, the cubic and quartic terms of the block's own beam energy; docs/theory/reduced_bodies.md \"Geometric stiffness\"); not given to `rigid`"},
     {"static_modes", KeyType::Choice, "–", "`none`", "`inertia`: every reduced rung's blocks get `reduction.static_modes: inertia` (up to 12 static responses to the body-frame inertia loads appended to the k modes); not given to `rigid`", {}, "", "", {"none", "inertia"}},
+    {"derivatives", KeyType::Integer, "–", "0", "with `geometric_stiffness: on`: every reduced rung's blocks get `reduction.derivatives: N` (the static modal derivatives of the first N basis vectors, against membrane locking; docs/theory/reduced_bodies.md \"Modal derivatives\"); not given to `rigid`", Range::non_negative()},
     {"ladder", KeyType::List, "–", "`[rigid, 2, 4, 8, 16, full]`", "the rungs, lightest first: `rigid` (each block one rigid body), a number of modes k (1 to 10000), `full` (the blocks' full nonlinear mesh, the reference; required)", {}, "", "list"}}};
 const Schema kReduceBlock{"study.reduce.blocks", {
     {"name", KeyType::Text, "–", kRequired, "a beam or shell block of the scene"},
@@ -169,6 +170,9 @@ void read_ladder(const Reader& rd, const YAML::Node& r, const YAML::Node& scene_
   l.method = kReduce.find("method")->choices[static_cast<size_t>(reduce.choice("method"))];
   l.geometric_stiffness = reduce.flag("geometric_stiffness", false);
   l.static_modes = kReduce.find("static_modes")->choices[static_cast<size_t>(reduce.choice("static_modes", 0))];
+  l.derivatives = reduce.integer("derivatives", 0);
+  if (l.derivatives > 0 && !l.geometric_stiffness)
+    rd.fail(reduce.node("derivatives"), "study.reduce.derivatives", "needs `geometric_stiffness: on` (the derivatives are the basis of its quadratic energy)");
   std::vector<std::string> common;
   if (reduce.has("interface")) common = reduce.texts("interface");
   const YAML::Node blocks = reduce.node("blocks");

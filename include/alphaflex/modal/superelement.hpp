@@ -146,6 +146,22 @@ struct ReducedBlock {
 ReducedBlock reduce_block(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& interface_nodes,
                           int modes, bool inertia_modes = false, Reduction method = Reduction::craig_bampton);
 
+/// Static modal derivatives (Idelsohn & Cardona, CMAME 49 (1985) 253; in a floating frame Wu &
+/// Tiso, Multibody Syst. Dyn. 36 (2016) 405): for each pair i ≤ j of the first `columns` vectors of
+/// the basis of `rb` (constraint modes first, then the normal modes, then any inertia modes), θᵢⱼ
+/// with K θᵢⱼ = −∂²f/∂ξᵢ∂ξⱼ on the block's interior (frame node and interface held), f the
+/// internal forces of the block's elements `element_ids` at the poses node_pose gives (central
+/// differences, steps as nonlinear_stiffness). θᵢⱼ is the second-order static response to a
+/// deformation along ξ: for a beam, the axial foreshortening that bending brings and a linear
+/// basis lacks (membrane locking, docs/theory/reduced_bodies.md "Modal derivatives"). They are
+/// M-orthonormalized against the normal modes and each other (a derivative below 10⁻⁶ of the
+/// largest, or dependent to 10⁻⁶, is dropped), appended to the basis, and rb's node data and
+/// inertia invariants recomputed; call before nonlinear_stiffness, which then takes them in.
+/// Returns how many were appended. Throws std::invalid_argument if `columns` is negative or more
+/// than the basis has.
+int add_modal_derivatives(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, int columns,
+                          ReducedBlock& rb);
+
 /// The cubic and quartic terms of the block's elastic energy along the basis of `rb`
 /// (docs/theory/reduced_bodies.md, "Geometric stiffness"), stored in rb.matrices.T and .Q (their
 /// unique entries): T(i, j, k) = ∂³U/∂ξᵢ∂ξⱼ∂ξₖ, Q(i, j, k, l) = ∂⁴U/∂ξᵢ∂ξⱼ∂ξₖ∂ξₗ at ξ = 0, U(ξ) the energy of the

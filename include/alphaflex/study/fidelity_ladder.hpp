@@ -25,6 +25,8 @@ struct ReductionLadder {
   bool geometric_stiffness = false;
   /// The reduced rungs' `reduction.static_modes`: "none" (not written) or "inertia".
   std::string static_modes = "none";
+  /// The reduced rungs' `reduction.derivatives` (0: not written).
+  int derivatives = 0;
   /// The rungs, lightest first: "rigid", a number of modes ("4"), "full" (the reference).
   std::vector<std::string> steps{"rigid", "2", "4", "8", "16", "full"};
 };

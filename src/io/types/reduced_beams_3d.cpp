@@ -47,7 +47,14 @@ const Schema& reduction_schema() {
                                                      "body-frame inertia loads — 3 uniform accelerations and 9 fields linear in position "
                                                      "(centrifugal, angular) — M-orthonormalized against the modes: up to 12 more "
                                                      "amplitudes, the axial stretch a spinning link's stiffening needs; `none`", {}, "", "",
-       {"none", "inertia"}}}};
+       {"none", "inertia"}},
+      {"derivatives", KeyType::Integer, "–", "0", "with `geometric_stiffness: on`: append the static modal derivatives of the first N "
+                                                 "basis vectors (the constraint modes first, then the normal modes), one per pair i ≤ j, "
+                                                 "M-orthonormalized and dependent ones dropped: the second-order static response to the "
+                                                 "deformation (for a beam, the foreshortening that bending brings), without which a "
+                                                 "truncated basis of a slender block locks under geometric stiffness "
+                                                 "(docs/theory/reduced_bodies.md, \"Modal derivatives\"); up to N(N+1)/2 more amplitudes",
+       Range::non_negative()}}};
   return s;
 }
 
@@ -64,6 +71,9 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
   const std::vector<std::string> names = r.texts("interface");
   const bool geometric = r.flag("geometric_stiffness", false);
   const bool inertia_modes = r.choice("static_modes", 0) == 1;
+  const int derivatives = r.integer("derivatives", 0);
+  if (derivatives > 0 && !geometric)
+    it.rd.fail(rn["derivatives"], at + ".derivatives", "needs `geometric_stiffness: on` (the derivatives are the basis of its quadratic energy)");
   if (inertia_modes && rigid) it.rd.fail(rn["static_modes"], at + ".static_modes", "needs elastic amplitudes: method rigid keeps none");
   if (geometric && rigid) it.rd.fail(rn["geometric_stiffness"], at + ".geometric_stiffness", "needs elastic amplitudes: method rigid keeps none");
   if (names.empty()) it.rd.fail(rn["interface"], at + ".interface", "names no point: the first interface point carries the body's frame");
@@ -144,6 +154,7 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
   try {
     const auto reduce = [&] {
       ReducedBlock r = reduce_block(scratch, matrices, in_block.at(m0), rigid ? std::vector<int>{} : others, modes, inertia_modes, basis);
+      if (derivatives > 0) add_modal_derivatives(scratch, elements, matrices, derivatives, r);
       if (geometric) nonlinear_stiffness(scratch, elements, matrices, r);
       return r;
     };
