@@ -378,7 +378,9 @@ std::string seconds(double s) {
 
 std::string pack_reduced_block(const ReducedBlock& rb) {
   std::string out;
-  auto put = [&](const void* p, size_t n) { out.append(static_cast<const char*>(p), n); };
+  auto put = [&](const void* p, size_t n) {
+    if (n > 0) out.append(static_cast<const char*>(p), n);
+  };
   for (const auto& [name, f] : flatten(rb)) {
     const unsigned long long ns = f.shape.size(), nd = f.data.size();
     put(&ns, sizeof ns);
@@ -393,6 +395,7 @@ ReducedBlock unpack_reduced_block(const std::string& bytes) {
   size_t pos = 0;
   auto take = [&](void* p, size_t n) {
     if (n > bytes.size() - pos) throw std::invalid_argument("a reduced block's bytes are cut off");
+    if (n == 0) return;  // an empty field: its data() may be null, which memcpy must not get
     std::memcpy(p, bytes.data() + pos, n);
     pos += n;
   };

@@ -18,8 +18,8 @@ void reduced_point_pose(const Eigen::Vector3d& X, const Eigen::Matrix3d& R0, con
 }
 
 MeshReconstruction::MeshReconstruction(std::vector<Point> points, std::vector<std::shared_ptr<const Element>> elements,
-                                       std::vector<std::string> names, Derived derived)
-    : points_(std::move(points)), elements_(std::move(elements)), names_(std::move(names)), derived_(std::move(derived)) {
+                                       std::vector<std::string> names, Derived derived, Recovery recovery)
+    : points_(std::move(points)), elements_(std::move(elements)), names_(std::move(names)), derived_(std::move(derived)), recovery_(recovery) {
   if (points_.empty()) throw std::invalid_argument("mesh reconstruction: no points");
   if (names_.empty()) names_.resize(points_.size());
   if (names_.size() != points_.size()) throw std::invalid_argument("mesh reconstruction: not one name per point");
@@ -120,6 +120,13 @@ Eigen::VectorXd odd_part(const Element& e, const LocalState& plus, const LocalSt
   return out;
 }
 
+/// S(ξ) of one element (Recovery::whole).
+Eigen::VectorXd whole(const Element& e, const LocalState& plus) {
+  Eigen::VectorXd a;
+  e.output(plus, a);
+  return a;
+}
+
 LocalState mirrored(const LocalState& body, int m) {
   LocalState s = body;
   s.q.segment(7, m) = -body.q.segment(7, m);
@@ -129,8 +136,13 @@ LocalState mirrored(const LocalState& body, int m) {
 }  // namespace
 
 std::vector<Eigen::VectorXd> MeshReconstruction::element_outputs(const LocalState& body) const {
-  const LocalState plus = state(body), minus = state(mirrored(body, m_));
+  const LocalState plus = state(body);
   std::vector<Eigen::VectorXd> out(elements_.size());
+  if (recovery_ == Recovery::whole) {
+    for (size_t k = 0; k < elements_.size(); ++k) out[k] = whole(*elements_[k], element_state(plus, k));
+    return out;
+  }
+  const LocalState minus = state(mirrored(body, m_));
   for (size_t k = 0; k < elements_.size(); ++k)
     out[k] = odd_part(*elements_[k], element_state(plus, k), element_state(minus, k), derived_);
   return out;
@@ -152,6 +164,7 @@ Eigen::VectorXd MeshReconstruction::element_output(const LocalState& body, size_
       point_state(b, points_[static_cast<size_t>(e.nodes()[static_cast<size_t>(i)])], s.q.data() + 7 * i, s.v.data() + 6 * i);
     return s;
   };
+  if (recovery_ == Recovery::whole) return whole(e, points(body));
   return odd_part(e, points(body), points(mirrored(body, m_)), derived_);
 }
 

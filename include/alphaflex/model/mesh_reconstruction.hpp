@@ -45,8 +45,14 @@ class MeshReconstruction {
   /// the recovered odd part (a shell's von Mises stresses from its resultants: the odd part of an
   /// even function of ξ would be zero); none: all results are recovered as the odd part.
   using Derived = std::function<void(Eigen::VectorXd& values)>;
+  /// How element results are recovered (element_outputs): `odd_part` ½ [S(ξ) − S(−ξ)], for a body
+  /// whose basis has no second-order shapes; `whole` S(ξ), for a basis with modal derivatives
+  /// (modal/superelement.hpp add_modal_derivatives): their amplitudes carry the foreshortening that
+  /// cancels the even strain of the bending shapes, so the even part is physical and the odd part
+  /// alone would keep the derivatives' membrane strain without what it cancels.
+  enum class Recovery { odd_part, whole };
   MeshReconstruction(std::vector<Point> points, std::vector<std::shared_ptr<const Element>> elements,
-                     std::vector<std::string> names = {}, Derived derived = {});
+                     std::vector<std::string> names = {}, Derived derived = {}, Recovery recovery = Recovery::odd_part);
 
   size_t points() const { return points_.size(); }
   const Point& point(size_t a) const { return points_[a]; }
@@ -99,6 +105,7 @@ class MeshReconstruction {
   std::vector<std::string> names_;
   std::vector<CellField> fields_;  // the first element's result fields (cell_fields())
   Derived derived_;
+  Recovery recovery_ = Recovery::odd_part;
   int m_ = 0;
 };
 

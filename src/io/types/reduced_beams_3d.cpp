@@ -201,7 +201,7 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
       it.rd.fail(rn, at, "block '" + it.name + "': a scene's reduced blocks are all beams or all shells (the reduced block '" + e->name() +
                               "' is a " + other->structure() + " block; the results hold one kind of reduced mesh)");
   auto body = std::make_unique<ReducedBody>(it.name, frame, amplitudes, rb.matrices, it.sb.gravity);
-  body->attach_reconstruction(reduced_block_mesh(it, scratch, elements, rb, in_block));  // the full mesh for output and sensors
+  body->attach_reconstruction(reduced_block_mesh(it, scratch, elements, rb, in_block, derivatives > 0));  // the full mesh for output and sensors
   it.model.add_element(std::move(body));
   // Each other interface point: its node held at node_pose by 6 equations (docs/theory/reduced_bodies.md).
   for (size_t i = 1; i < mesh_interface.size(); ++i) {

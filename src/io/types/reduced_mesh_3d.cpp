@@ -8,7 +8,7 @@
 namespace alphaflex::scene_detail {
 
 std::shared_ptr<const MeshReconstruction> reduced_block_mesh(const Item& it, const Model& scratch, const std::vector<int>& elements,
-                                                             const ReducedBlock& rb, const std::map<int, int>& in_block) {
+                                                             const ReducedBlock& rb, const std::map<int, int>& in_block, bool whole) {
   std::vector<MeshReconstruction::Point> points(rb.positions.size());
   for (size_t a = 0; a < points.size(); ++a) {
     points[a].X = rb.positions[a];
@@ -34,7 +34,8 @@ std::shared_ptr<const MeshReconstruction> reduced_block_mesh(const Item& it, con
       derived = [t](Eigen::VectorXd& values) { ReissnerMindlinShell::von_mises_from_resultants(values, t); };
     }
   }
-  return std::make_shared<const MeshReconstruction>(std::move(points), std::move(cells), std::move(names), std::move(derived));
+  return std::make_shared<const MeshReconstruction>(std::move(points), std::move(cells), std::move(names), std::move(derived),
+                                                    whole ? MeshReconstruction::Recovery::whole : MeshReconstruction::Recovery::odd_part);
 }
 
 namespace {

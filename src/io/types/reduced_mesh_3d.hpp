@@ -14,9 +14,10 @@ namespace alphaflex::scene_detail {
 
 /// The mesh of a block reduced on `scratch` (its elements `elements`, its nodes the scratch nodes
 /// 0 … n−1 in the order of `rb`'s points; `in_block` mesh node → scratch node, for the names of
-/// its named points).
+/// its named points). `whole`: results recovered as S(ξ), not the odd part (a basis with modal
+/// derivatives; MeshReconstruction::Recovery).
 std::shared_ptr<const MeshReconstruction> reduced_block_mesh(const Item& it, const Model& scratch, const std::vector<int>& elements,
-                                                             const ReducedBlock& rb, const std::map<int, int>& in_block);
+                                                             const ReducedBlock& rb, const std::map<int, int>& in_block, bool whole = false);
 
 /// A point sensor whose `body` names a point inside a reduced block: an element output of the
 /// block's reduced body (its point's position or displacement). False if `body` names no such
