@@ -69,8 +69,10 @@ def error(ref, x, key):
 
 
 VARIANTS = {
-    "linear": ["--study-set", "reduce.geometric_stiffness=off", "--study-set", "reduce.static_modes=none"],
-    "geometric": ["--study-set", "reduce.geometric_stiffness=on", "--study-set", "reduce.static_modes=inertia"],
+    "linear": ["--study-set", "reduce.geometric_stiffness=off", "--study-set", "reduce.static_modes=none",
+               "--study-set", "reduce.derivatives=0"],
+    "geometric": ["--study-set", "reduce.geometric_stiffness=on", "--study-set", "reduce.static_modes=inertia",
+                  "--study-set", "reduce.derivatives=0"],
     # Geometric stiffness with the modal derivatives of the first N basis vectors (--derivatives).
     "derivatives": ["--study-set", "reduce.geometric_stiffness=on", "--study-set", "reduce.static_modes=none"],
 }
