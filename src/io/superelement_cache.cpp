@@ -29,7 +29,7 @@ using io_detail::Rows;
 // Bump when the meaning of a stored field changes (not for a change of its C++ type: the layout
 // signature below is part of every key).
 constexpr const char* kFormat = "alphaflex superelements";
-constexpr long long kVersion = 1;
+constexpr long long kVersion = 2;  // 2: the key has the evaluated reduction keys
 
 // ---- ReducedBlock as a list of flat fields ------------------------------------------------------
 //
@@ -474,13 +474,20 @@ ReducedBlock SuperelementCache::find_or_reduce(const std::string& name, const Su
       if (f < 0) {
         error = "cannot be read as an HDF5 file (cut off or not a superelement cache)";
       } else {
-        std::string format;
-        long long version = 0;
-        if (!io_detail::read_attribute(f, "format", format) || format != kFormat)
-          error = "is not a superelement cache (its attribute 'format' is not '" + std::string(kFormat) + "')";
-        else if (io_detail::read_attribute(f, "version", version) && version == kVersion)
-          packed = read_entry(f, ec ? 0 : bytes, block, key.digest(), key.text(), error);
-        // (another version: its entries are not read, and the file is rewritten)
+        // Rank 0 alone is here, the others wait in the broadcast below: nothing may escape (a size
+        // read from a corrupt header could still make an allocation throw).
+        try {
+          std::string format;
+          long long version = 0;
+          if (!io_detail::read_attribute(f, "format", format) || format != kFormat)
+            error = "is not a superelement cache (its attribute 'format' is not '" + std::string(kFormat) + "')";
+          else if (io_detail::read_attribute(f, "version", version) && version == kVersion)
+            packed = read_entry(f, ec ? 0 : bytes, block, key.digest(), key.text(), error);
+          // (another version: its entries are not read, and the file is rewritten)
+        } catch (const std::exception& e) {
+          packed.clear();
+          error = std::string("cannot be read (") + e.what() + ")";
+        }
         if (H5Fclose(f) < 0 && error.empty()) error = "cannot be closed after reading (cut off?)";
       }
       if (!error.empty()) {

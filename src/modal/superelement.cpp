@@ -784,7 +784,6 @@ int add_modal_derivatives(const Model& model, const std::vector<int>& element_id
     throw std::invalid_argument(os.str());
   }
   if (columns == 0) return 0;
-  const BlockForces forces(model, element_ids, block, rb);
   const int n = block.size(), f0 = block.row_of(rb.frame_node);
   std::vector<int> keep;
   for (int r = 0; r < n; ++r)
@@ -801,39 +800,42 @@ int add_modal_derivatives(const Model& model, const std::vector<int>& element_id
   if (interior.empty()) return 0;
   const Eigen::SimplicialLDLT<SparseMatrix> ldlt(submatrix(Kc, interior, interior));
   check_held(ldlt);
-  // Difference steps as nonlinear_stiffness: 10⁻³ of the block's size in each direction's largest
-  // displacement (a rotation counted by its lever, the block's size).
-  const double size = forces.size();
-  Eigen::VectorXd h(m);
-  for (int i = 0; i < m; ++i) {
-    double big = 0.0;
-    for (size_t a = 0; a < block.nodes.size(); ++a)
-      big = std::max({big, rb.shapes[a].col(i).head<3>().cwiseAbs().maxCoeff(), size * rb.shapes[a].col(i).tail<3>().cwiseAbs().maxCoeff()});
-    h[i] = 1e-3 * size / std::max(big, 1e-300);
-  }
-  const Eigen::VectorXd zero = forces.full(Eigen::VectorXd::Zero(m));
-  const auto unit = [&](int i) { return Eigen::VectorXd(Eigen::VectorXd::Unit(m, i) * h[i]); };
-  // θᵢⱼ: K_ii θ = −(∂²f/∂ξᵢ∂ξⱼ)_i on the interior, zero on the interface rows (held, as the
-  // constraint modes hold them: the interface rows of the basis stay [I, 0]).
   std::vector<Eigen::VectorXd> theta;
   double largest = 0.0;
-  for (int i = 0; i < columns; ++i)
-    for (int j = i; j < columns; ++j) {
-      Eigen::VectorXd d2;
-      if (i == j) {
-        d2 = (forces.full(unit(i)) - 2.0 * zero + forces.full(-unit(i))) / (h[i] * h[i]);
-      } else {
-        const Eigen::VectorXd a = unit(i), b = unit(j);
-        d2 = (forces.full(a + b) - forces.full(a - b) - forces.full(b - a) + forces.full(-a - b)) / (4.0 * h[i] * h[j]);
-      }
-      Eigen::VectorXd gi(static_cast<Eigen::Index>(interior.size()));
-      for (size_t r = 0; r < interior.size(); ++r) gi[static_cast<Eigen::Index>(r)] = d2[keep[static_cast<size_t>(interior[r])]];
-      const Eigen::VectorXd ti = -ldlt.solve(gi);
-      Eigen::VectorXd t = Eigen::VectorXd::Zero(nk);
-      for (size_t r = 0; r < interior.size(); ++r) t[interior[r]] = ti[static_cast<Eigen::Index>(r)];
-      largest = std::max(largest, std::sqrt(t.dot(Mc * t)));
-      theta.push_back(std::move(t));
+  {  // `forces` reads rb's node data, which complete_block rebuilds below: it ends here.
+    const BlockForces forces(model, element_ids, block, rb);
+    // Difference steps as nonlinear_stiffness: 10⁻³ of the block's size in each direction's largest
+    // displacement (a rotation counted by its lever, the block's size).
+    const double size = forces.size();
+    Eigen::VectorXd h(m);
+    for (int i = 0; i < m; ++i) {
+      double big = 0.0;
+      for (size_t a = 0; a < block.nodes.size(); ++a)
+        big = std::max({big, rb.shapes[a].col(i).head<3>().cwiseAbs().maxCoeff(), size * rb.shapes[a].col(i).tail<3>().cwiseAbs().maxCoeff()});
+      h[i] = 1e-3 * size / std::max(big, 1e-300);
     }
+    const Eigen::VectorXd zero = forces.full(Eigen::VectorXd::Zero(m));
+    const auto unit = [&](int i) { return Eigen::VectorXd(Eigen::VectorXd::Unit(m, i) * h[i]); };
+    // θᵢⱼ: K_ii θ = −(∂²f/∂ξᵢ∂ξⱼ)_i on the interior, zero on the interface rows (held, as the
+    // constraint modes hold them: the interface rows of the basis stay [I, 0]).
+    for (int i = 0; i < columns; ++i)
+      for (int j = i; j < columns; ++j) {
+        Eigen::VectorXd d2;
+        if (i == j) {
+          d2 = (forces.full(unit(i)) - 2.0 * zero + forces.full(-unit(i))) / (h[i] * h[i]);
+        } else {
+          const Eigen::VectorXd a = unit(i), b = unit(j);
+          d2 = (forces.full(a + b) - forces.full(a - b) - forces.full(b - a) + forces.full(-a - b)) / (4.0 * h[i] * h[j]);
+        }
+        Eigen::VectorXd gi(static_cast<Eigen::Index>(interior.size()));
+        for (size_t r = 0; r < interior.size(); ++r) gi[static_cast<Eigen::Index>(r)] = d2[keep[static_cast<size_t>(interior[r])]];
+        const Eigen::VectorXd ti = -ldlt.solve(gi);
+        Eigen::VectorXd t = Eigen::VectorXd::Zero(nk);
+        for (size_t r = 0; r < interior.size(); ++r) t[interior[r]] = ti[static_cast<Eigen::Index>(r)];
+        largest = std::max(largest, std::sqrt(t.dot(Mc * t)));
+        theta.push_back(std::move(t));
+      }
+  }
   // M-orthonormalized against the normal (and inertia) modes and each other, as add_inertia_modes;
   // a derivative below 10⁻⁶ of the largest (a pair whose curvature does not strain the block, e.g.
   // a rigid motion of the interface) or dependent on the others (to 10⁻⁶) is dropped.

@@ -9,8 +9,8 @@ Checks:
   its sensor CSV is the first's to the last byte;
 - a cut-off file and a file that is not HDF5 are named in a warning, the block is computed again
   (the same CSV), the file rewritten, and the next run reads it;
-- another key (6 modes; another Young's modulus) is computed and kept beside the first: the 4-mode
-  key is still read afterwards;
+- another key (6 modes; another Young's modulus; the modes given by a parameter whose value --set
+  changes) is computed and kept beside the first: the 4-mode key is still read afterwards;
 - `output.superelement_cache: off` writes no file and reads none;
 - 2 ranks: rank 0 reads and sends; the CSV equals the 2-rank run that computed, and 1 rank reading
   the file 2 ranks wrote gives the 1-rank CSV;
@@ -80,6 +80,14 @@ def main():
     check("strip: computed in" in s7, "another Young's modulus: another key, computed")
     s8, csv8 = run("one")
     check("strip: read from" in s8 and csv8 == csv1, "the 4-mode key is still kept beside them and read")
+
+    # The modes given by a parameter: the key holds the evaluated count, not the text `nm`.
+    par = lambda nm: ["--set", f"parameters.nm={nm}", "--set",
+                      "beams.0.reduction={method: craig_bampton, modes: nm, interface: [root], geometric_stiffness: on}"]
+    p4, pcsv4 = run("param", extra=par(4))
+    p6, pcsv6 = run("param", extra=par(6))
+    check("strip: computed in" in p6 and pcsv4 == csv1 and pcsv6 == csv6,
+          "modes: nm with --set parameters.nm=6 after nm=4: another key (the evaluated count), computed")
 
     s9, csv9 = run("off", extra=["--set", "output.superelement_cache=off"])
     check("no superelement cache" in s9 and not os.path.exists(cache("off")) and csv9 == csv1,

@@ -163,6 +163,11 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
     // interface points, the scratch nodes and elements, K and M.
     std::string settings = "block " + it.name + "\n" + YAML::Dump(it.node);
     for (const Item& m : more) settings += "\nwith block " + m.name + "\n" + YAML::Dump(m.node);
+    // The evaluated reduction keys too: the text may be an expression of `parameters` (modes: nm),
+    // whose value --set can change without changing the text (nor K and M).
+    settings += "\nevaluated: method " + std::to_string(method) + " modes " + std::to_string(modes) + " static_modes " +
+                std::to_string(inertia_modes ? 1 : 0) + " geometric_stiffness " + std::to_string(geometric ? 1 : 0) +
+                " derivatives " + std::to_string(derivatives);
     settings += "\ninterface";
     for (int m : mesh_interface) settings += " " + std::to_string(m);
     rb = it.sb.superelements ? it.sb.superelements->find_or_reduce(it.name, SuperelementKey(settings, scratch, elements, matrices), reduce)
