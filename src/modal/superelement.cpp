@@ -483,9 +483,40 @@ namespace {
 // (Gram–Schmidt in M), M-unit, appended after them; those dependent on the basis (relative norm
 // below 1e-6 after the projection) are dropped. They are zero on the interface, so the
 // constraint modes stay K-orthogonal to them (Ψ is the static condensation).
+// Appends `candidates` (vectors on the block's coordinates without the frame node's) to the basis
+// of `se`, M-orthonormalized against its modal columns (those after the constraint modes) and each
+// other by Gram–Schmidt, twice (re-orthogonalized to round-off); a candidate whose M-norm is not
+// above `floor`, or that keeps less than 10⁻⁶ of it after the projection (dependent), is dropped.
+// Then K̃ and M̃ anew. Returns how many were appended (inertia modes, modal derivatives).
+int append_m_orthonormal(const SparseMatrix& Kc, const SparseMatrix& Mc, const std::vector<Eigen::VectorXd>& candidates, double floor,
+                         Superelement& se) {
+  const Eigen::Index nm = se.T.cols() - se.interface_size();
+  std::vector<Eigen::VectorXd> added;
+  for (Eigen::VectorXd s : candidates) {
+    const double before = std::sqrt(s.dot(Mc * s));
+    if (!(before > floor)) continue;
+    for (int pass = 0; pass < 2; ++pass) {
+      if (nm > 0) s -= se.T.rightCols(nm) * (se.T.rightCols(nm).transpose() * (Mc * s));
+      for (const Eigen::VectorXd& v : added) s -= v * v.dot(Mc * s);
+    }
+    const double after = std::sqrt(s.dot(Mc * s));
+    if (after < 1e-6 * before) continue;
+    added.push_back(s / after);
+  }
+  const Eigen::Index n0 = se.T.cols();
+  se.T.conservativeResize(Eigen::NoChange, n0 + static_cast<Eigen::Index>(added.size()));
+  for (size_t k = 0; k < added.size(); ++k) se.T.col(n0 + static_cast<Eigen::Index>(k)) = added[k];
+  const Eigen::MatrixXd KT = Kc * se.T, MT = Mc * se.T;
+  se.K = se.T.transpose() * KT;
+  se.M = se.T.transpose() * MT;
+  se.K = 0.5 * (se.K + se.K.transpose()).eval();
+  se.M = 0.5 * (se.M + se.M.transpose()).eval();
+  return static_cast<int>(added.size());
+}
+
 void add_inertia_modes(const Model& model, const BlockMatrices& block, int frame_node, const std::vector<int>& keep,
                        const std::vector<int>& position, const SparseMatrix& Kc, const SparseMatrix& Mc, Superelement& se) {
-  const int nk = static_cast<int>(keep.size()), nb = se.interface_size();
+  const int nk = static_cast<int>(keep.size());
   std::vector<char> is_boundary(static_cast<size_t>(nk), 0);
   for (int r : se.boundary) is_boundary[static_cast<size_t>(r)] = 1;
   std::vector<int> interior;
@@ -511,28 +542,9 @@ void add_inertia_modes(const Model& model, const BlockMatrices& block, int frame
   const Eigen::MatrixXd Si = ldlt.solve(Fi);
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(nk, 12);
   for (size_t i = 0; i < interior.size(); ++i) S.row(interior[i]) = Si.row(static_cast<Eigen::Index>(i));
-  const Eigen::Index nm = se.T.cols() - nb;
-  std::vector<Eigen::VectorXd> added;
-  for (int c = 0; c < 12; ++c) {
-    Eigen::VectorXd s = S.col(c);
-    const double before = std::sqrt(s.dot(Mc * s));
-    if (!(before > 0.0)) continue;
-    for (int pass = 0; pass < 2; ++pass) {  // twice: Gram–Schmidt re-orthogonalized to round-off
-      if (nm > 0) s -= se.T.rightCols(nm) * (se.T.rightCols(nm).transpose() * (Mc * s));
-      for (const Eigen::VectorXd& v : added) s -= v * v.dot(Mc * s);
-    }
-    const double after = std::sqrt(s.dot(Mc * s));
-    if (after < 1e-6 * before) continue;
-    added.push_back(s / after);
-  }
-  const Eigen::Index n0 = se.T.cols();
-  se.T.conservativeResize(Eigen::NoChange, n0 + static_cast<Eigen::Index>(added.size()));
-  for (size_t k = 0; k < added.size(); ++k) se.T.col(n0 + static_cast<Eigen::Index>(k)) = added[k];
-  const Eigen::MatrixXd KT = Kc * se.T, MT = Mc * se.T;
-  se.K = se.T.transpose() * KT;
-  se.M = se.T.transpose() * MT;
-  se.K = 0.5 * (se.K + se.K.transpose()).eval();
-  se.M = 0.5 * (se.M + se.M.transpose()).eval();
+  std::vector<Eigen::VectorXd> candidates;
+  for (int c = 0; c < 12; ++c) candidates.push_back(S.col(c));
+  append_m_orthonormal(Kc, Mc, candidates, 0.0, se);
 }
 
 void complete_block(const Model& model, const BlockMatrices& block, ReducedBlock& rb);
@@ -791,7 +803,6 @@ int add_modal_derivatives(const Model& model, const std::vector<int>& element_id
   const int nk = static_cast<int>(keep.size());
   const SparseMatrix Kc = submatrix(block.K_sparse, keep, keep), Mc = submatrix(block.M_sparse, keep, keep);
   Superelement& se = rb.superelement;
-  const int nb = se.interface_size();
   std::vector<char> is_boundary(static_cast<size_t>(nk), 0);
   for (int r : se.boundary) is_boundary[static_cast<size_t>(r)] = 1;
   std::vector<int> interior;
@@ -839,29 +850,9 @@ int add_modal_derivatives(const Model& model, const std::vector<int>& element_id
   // M-orthonormalized against the normal (and inertia) modes and each other, as add_inertia_modes;
   // a derivative below 10⁻⁶ of the largest (a pair whose curvature does not strain the block, e.g.
   // a rigid motion of the interface) or dependent on the others (to 10⁻⁶) is dropped.
-  const Eigen::Index nm = se.T.cols() - nb;
-  std::vector<Eigen::VectorXd> added;
-  for (Eigen::VectorXd s : theta) {
-    const double before = std::sqrt(s.dot(Mc * s));
-    if (!(before > 1e-6 * largest)) continue;
-    for (int pass = 0; pass < 2; ++pass) {
-      if (nm > 0) s -= se.T.rightCols(nm) * (se.T.rightCols(nm).transpose() * (Mc * s));
-      for (const Eigen::VectorXd& v : added) s -= v * v.dot(Mc * s);
-    }
-    const double after = std::sqrt(s.dot(Mc * s));
-    if (after < 1e-6 * before) continue;
-    added.push_back(s / after);
-  }
-  const Eigen::Index n0 = se.T.cols();
-  se.T.conservativeResize(Eigen::NoChange, n0 + static_cast<Eigen::Index>(added.size()));
-  for (size_t k = 0; k < added.size(); ++k) se.T.col(n0 + static_cast<Eigen::Index>(k)) = added[k];
-  const Eigen::MatrixXd KT = Kc * se.T, MT = Mc * se.T;
-  se.K = se.T.transpose() * KT;
-  se.M = se.T.transpose() * MT;
-  se.K = 0.5 * (se.K + se.K.transpose()).eval();
-  se.M = 0.5 * (se.M + se.M.transpose()).eval();
+  const int added = append_m_orthonormal(Kc, Mc, theta, 1e-6 * largest, se);
   complete_block(model, block, rb);
-  return static_cast<int>(added.size());
+  return added;
 }
 
 void nonlinear_stiffness(const Model& model, const std::vector<int>& element_ids, const BlockMatrices& block, ReducedBlock& rb,
