@@ -8,9 +8,99 @@ namespace {
 /// The configuration numbers of the link's spatial frames and of ψ (the last one).
 kernel_detail::Poses frames_of(const Eigen::VectorXd& q, int nf) { return kernel_detail::poses(q, nf); }
 
-/// Φ and its gradient (AD1 over the frames' increments and ψ: N = 6 nf + 1 variables).
+/// A marker's axis or point as a function of the frames, with its derivative along the increments
+/// (x + δx, R(I + δθ^)) of N variables (6 per frame, ψ last): ∂(R w)/∂δθ = −R ŵ, ∂(x + R s)/∂δx = I,
+/// ∂/∂δθ = −R ŝ. These hold at any frame matrix R (no RᵀR = I is used), so `second` can
+/// differentiate them once more at R(I + δθ'^) by forward AD.
+template <class S, int N>
+struct MarkerVectorAt {
+  Vec3<S> value;
+  Eigen::Matrix<S, 3, N> d;
+};
+
+template <class S, int N>
+MarkerVectorAt<S, N> axis_at(const SpatialMarker& m, int k, const Pose<S>* frames) {
+  MarkerVectorAt<S, N> u;
+  u.d.setZero();
+  const Vec3<S> w = m.rotation.col(k).template cast<S>();
+  if (m.slot < 0) {
+    u.value = w;
+    return u;
+  }
+  const Mat3<S>& R = frames[m.slot].R;
+  u.value = R * w;
+  u.d.template block<3, 3>(0, 6 * m.slot + 3) = -R * hat<S>(w);
+  return u;
+}
+
+template <class S, int N>
+MarkerVectorAt<S, N> point_at(const SpatialMarker& m, const Pose<S>* frames) {
+  MarkerVectorAt<S, N> p;
+  p.d.setZero();
+  const Vec3<S> s = m.position.template cast<S>();
+  if (m.slot < 0) {
+    p.value = s;
+    return p;
+  }
+  const Pose<S>& f = frames[m.slot];
+  p.value = f.x + f.R * s;
+  p.d.template block<3, 3>(0, 6 * m.slot).setIdentity();
+  p.d.template block<3, 3>(0, 6 * m.slot + 3) = -f.R * hat<S>(s);
+  return p;
+}
+
+}  // namespace
+
+/// ∂Φ/∂(δ, ψ) in closed form. Every rotation equation is σ u·(cos ψ v + sin ψ w) with marker axes
+/// u, v, w (header): its gradient is σ [(cos ψ v + sin ψ w)ᵀ u_δ + uᵀ(cos ψ v_δ + sin ψ w_δ)] and
+/// ∂/∂ψ = σ u·(−sin ψ v + cos ψ w); the translation (p_A − p_B)·b3 − ψ has
+/// b3ᵀ(p_A,δ − p_B,δ) + (p_A − p_B)ᵀ b3,δ and −1.
+template <int N, class S>
+Eigen::Matrix<S, 1, N> JointCoordinateLink::gradient(const Pose<S>* frames, const S& psi) const {
+  using std::cos;
+  using std::sin;
+  using V = MarkerVectorAt<S, N>;
+  Eigen::Matrix<S, 1, N> g;
+  if (coordinate_ == Coordinate::translation) {
+    const V pa = point_at<S, N>(a_, frames), pb = point_at<S, N>(b_, frames), b3 = axis_at<S, N>(b_, 2, frames);
+    const Vec3<S> r = pa.value - pb.value;
+    g.template head<N - 1>() = (b3.value.transpose() * (pa.d - pb.d) + r.transpose() * b3.d).template head<N - 1>();
+    g[N - 1] = S(-1);
+    return g;
+  }
+  // σ u·(cos ψ v + ν sin ψ w): rotation a1·(cos ψ b2 − sin ψ b1); universal_axis −b2·(cos ψ a3 + sin ψ a2);
+  // universal_axis2 −a1·(cos ψ b3 + sin ψ b1).
+  const SpatialMarker *mu = &a_, *mv = &b_;
+  int ku = 0, kv = 1, kw = 0;
+  double sigma = 1.0, nu = -1.0;
+  if (coordinate_ == Coordinate::universal_axis) {
+    mu = &b_, mv = &a_, ku = 1, kv = 2, kw = 1, sigma = -1.0, nu = 1.0;
+  } else if (coordinate_ == Coordinate::universal_axis2) {
+    kv = 2, kw = 0, sigma = -1.0, nu = 1.0;
+  }
+  const V u = axis_at<S, N>(*mu, ku, frames), v = axis_at<S, N>(*mv, kv, frames), w = axis_at<S, N>(*mv, kw, frames);
+  const S c = cos(psi), s = S(nu) * sin(psi);
+  const Vec3<S> cv = c * v.value + s * w.value;
+  const Eigen::Matrix<S, 1, N> frames_part = cv.transpose() * u.d + u.value.transpose() * (c * v.d + s * w.d);
+  g = S(sigma) * frames_part;
+  g[N - 1] = S(sigma) * u.value.dot(Vec3<S>(-sin(psi) * v.value + S(nu) * cos(psi) * w.value));
+  return g;
+}
+
+namespace {
+
+/// Φ and its gradient in closed form (N = 6 nf + 1 variables, ψ last).
 template <int N, class Link>
 void first(const Link& link, const Eigen::VectorXd& q, double& phi, Eigen::RowVectorXd& grad) {
+  constexpr int nf = N / 6;
+  const auto p = frames_of(q, nf);
+  phi = link.equation(p.data(), q[7 * nf]);
+  grad = link.template gradient<N, double>(p.data(), q[7 * nf]);
+}
+
+/// Φ and its gradient by forward AD of the equation (the check of the closed form in the tests).
+template <int N, class Link>
+void first_by_ad(const Link& link, const Eigen::VectorXd& q, double& phi, Eigen::RowVectorXd& grad) {
   using A = ad::FixedAD1<N>;
   constexpr int nf = N / 6;
   const auto p = frames_of(q, nf);
@@ -22,9 +112,24 @@ void first(const Link& link, const Eigen::VectorXd& q, double& phi, Eigen::RowVe
   grad = f.derivatives().transpose();
 }
 
-/// H(i, j) = ∂/∂δ'_j ∂Φ/∂δ_i (outer perturbation first, as model/spatial_kernel.hpp's `second`).
+/// H(i, j) = ∂/∂δ'_j ∂Φ/∂δ_i (outer perturbation first, as model/spatial_kernel.hpp's `second`):
+/// forward AD1 of the closed-form gradient at the frames (x + δx', R(I + δθ'^)) and ψ + δψ'.
 template <int N, class Link>
 void second(const Link& link, const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
+  using A = ad::FixedAD1<N>;
+  constexpr int nf = N / 6;
+  const auto p = frames_of(q, nf);
+  std::array<Pose<A>, nf> ps;
+  for (int k = 0; k < nf; ++k) ps[static_cast<size_t>(k)] = kernel_detail::seeded_pose1<N>(p[static_cast<size_t>(k)], 6 * k);
+  const A psi(q[7 * nf], A::DerType::Unit(N - 1));
+  const Eigen::Matrix<A, 1, N> g = link.template gradient<N, A>(ps.data(), psi);
+  H.resize(N, N);
+  for (int i = 0; i < N; ++i) H.row(i) = g[i].derivatives().transpose();
+}
+
+/// The same by nested forward AD of the equation (the check in the tests).
+template <int N, class Link>
+void second_by_ad(const Link& link, const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
   using A1 = ad::FixedAD1<N>;
   using A2 = ad::FixedAD2<N>;
   constexpr int nf = N / 6;
@@ -82,6 +187,22 @@ void JointCoordinateLink::geometric_stiffness(const Eigen::VectorXd& q, double, 
                                               Eigen::MatrixXd& k) const {
   if (frames() == 1) second<7>(*this, q, k);
   else second<13>(*this, q, k);
+  k *= lambda[0];
+}
+
+void JointCoordinateLink::evaluate_by_ad(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
+  double f;
+  Eigen::RowVectorXd g;
+  if (frames() == 1) first_by_ad<7>(*this, q, f, g);
+  else first_by_ad<13>(*this, q, f, g);
+  phi = Eigen::VectorXd::Constant(1, f);
+  phi_q = g;
+}
+
+void JointCoordinateLink::geometric_stiffness_by_ad(const Eigen::VectorXd& q, double, const Eigen::VectorXd& lambda,
+                                                    Eigen::MatrixXd& k) const {
+  if (frames() == 1) second_by_ad<7>(*this, q, k);
+  else second_by_ad<13>(*this, q, k);
   k *= lambda[0];
 }
 

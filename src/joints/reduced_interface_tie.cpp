@@ -12,15 +12,7 @@ namespace {
 constexpr int kVars = 18;
 using Z = Eigen::Matrix<double, 6, 1>;
 using A1 = ad::FixedAD1<kVars>;
-using A2 = ad::FixedAD2<kVars>;
 using Along = ad::FixedAD2<1>;
-
-/// z_k (vector space) as variable 12 + k, inner and outer perturbation alike, no mixed part.
-A2 seeded_z2(double x, int k) {
-  A2::DerType outer;
-  for (int o = 0; o < kVars; ++o) outer[o] = A1(o == 12 + k ? 1.0 : 0.0, A1::DerType::Zero());
-  return A2(A1(x, A1::DerType::Unit(12 + k)), outer);
-}
 
 /// a + b τ + c τ²/2 with τ both the inner and the outer variable (the mixed derivative is d²/dτ²).
 Along along(double a, double b, double c) {
@@ -38,52 +30,64 @@ Pose<Along> moving(const Pose<double>& p, const Eigen::Vector3d& vx, const Eigen
   return out;
 }
 
-/// Φ and ∂Φ/∂(δ_B, δ_f, z) (6 × 18) in closed form: d = x_B − x_f − R_f(X_a + u) and
+/// ∂Φ/∂(δ_B, δ_f, z) (6 × 18) in closed form, for any scalar: d = x_B − x_f − R_f(X_a + u) and
 /// aᵢ·bⱼ, aᵢ = R_a eᵢ, R_a = R_f C, C = R̄_a exp(ψ̂), bⱼ = R_B eⱼ. With δx in world axes and
 /// R → R exp(δθ̂) (so δ(R w) = −R ŵ δθ) and exp(ψ + δψ) = exp(ψ) exp((T(ψ)δψ)^):
 ///   ∂d/∂(δx_B, δx_f, δθ_f, u) = (I, −I, R_f (X_a + u)^, −R_f),
 ///   ∂(aᵢ·bⱼ)/∂δθ_B = (eⱼ × R_Bᵀaᵢ)ᵀ, ∂/∂δθ_f = (Ceᵢ × R_fᵀbⱼ)ᵀ, ∂/∂ψ = (eᵢ × R_aᵀbⱼ)ᵀ T(ψ)
-/// (−vᵀŵ = (w × v)ᵀ). The values by the scalar-generic `equations` in double (the AD path's value
-/// part to a few ulps). The
-/// AD1 Jacobian it replaces cost ~25 % of a reduced slider-crank's run (docs/benchmarks/reduced.md);
+/// (−vᵀŵ = (w × v)ᵀ). None of these formulas uses RᵀR = I, so they hold at the frames
+/// R(I + δθ'^) that `second` differentiates them at. The AD1 Jacobian of the equations it
+/// replaces cost ~25 % of a reduced slider-crank's run (docs/benchmarks/reduced.md);
 /// test_reduced_interface_tie.cpp compares the two.
+template <class S>
+Eigen::Matrix<S, 6, kVars> jacobian(const ReducedInterfaceTie& tie, const Pose<S>& b, const Pose<S>& f, const Vec3<S>& u,
+                                    const Vec3<S>& psi) {
+  const Mat3<S> C = tie.rotation().template cast<S>() * exp_so3<S>(psi), Ra = f.R * C, Tpsi = tangent_so3<S>(psi);
+  Eigen::Matrix<S, 6, kVars> J = Eigen::Matrix<S, 6, kVars>::Zero();
+  J.template block<3, 3>(0, 0).setIdentity();
+  J.template block<3, 3>(0, 6) = -Mat3<S>::Identity();
+  J.template block<3, 3>(0, 9) = f.R * hat<S>(Vec3<S>(tie.position().template cast<S>() + u));
+  J.template block<3, 3>(0, 12) = -f.R;
+  const int pair[3][2] = {{1, 2}, {2, 0}, {0, 1}};  // rows 3–5: a₂·b₃, a₃·b₁, a₁·b₂
+  for (int r = 0; r < 3; ++r) {
+    const int i = pair[r][0], j = pair[r][1];
+    const Vec3<S> ei = Vec3<S>::Unit(i), ej = Vec3<S>::Unit(j);
+    J.template block<1, 3>(3 + r, 3) = ej.cross(Vec3<S>(b.R.transpose() * Ra.col(i))).transpose();
+    J.template block<1, 3>(3 + r, 9) = Vec3<S>(C.col(i)).cross(Vec3<S>(f.R.transpose() * b.R.col(j))).transpose();
+    J.template block<1, 3>(3 + r, 15) = ei.cross(Vec3<S>(Ra.transpose() * b.R.col(j))).transpose() * Tpsi;
+  }
+  return J;
+}
+
+/// Φ (by the scalar-generic `equations` in double: the AD path's value part to a few ulps) and
+/// ∂Φ/∂(δ_B, δ_f, z).
 void first(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z, Eigen::VectorXd& phi,
            Eigen::Matrix<double, 6, kVars>& J) {
   const Eigen::Vector3d u = z.head<3>(), psi = z.tail<3>();
   phi.resize(6);
   tie.equations<double>(b, f, u, psi, phi.data());
-  const Eigen::Matrix3d C = tie.rotation() * exp_so3<double>(psi), Ra = f.R * C, Tpsi = tangent_so3<double>(psi);
-  J.setZero();
-  J.block<3, 3>(0, 0).setIdentity();
-  J.block<3, 3>(0, 6) = -Eigen::Matrix3d::Identity();
-  J.block<3, 3>(0, 9) = f.R * hat<double>(Eigen::Vector3d(tie.position() + u));
-  J.block<3, 3>(0, 12) = -f.R;
-  const int pair[3][2] = {{1, 2}, {2, 0}, {0, 1}};  // rows 3–5: a₂·b₃, a₃·b₁, a₁·b₂
-  for (int r = 0; r < 3; ++r) {
-    const int i = pair[r][0], j = pair[r][1];
-    const Eigen::Vector3d ei = Eigen::Vector3d::Unit(i), ej = Eigen::Vector3d::Unit(j);
-    J.block<1, 3>(3 + r, 3) = ej.cross(b.R.transpose() * Ra.col(i)).transpose();
-    J.block<1, 3>(3 + r, 9) = C.col(i).cross(f.R.transpose() * b.R.col(j)).transpose();
-    J.block<1, 3>(3 + r, 15) = ei.cross(Ra.transpose() * b.R.col(j)).transpose() * Tpsi;
-  }
+  J = jacobian<double>(tie, b, f, u, psi);
 }
 
 /// H(i, j) = ∂/∂δ'_j ∂(λᵀΦ)/∂δ_i over the 18 kernel variables (outer perturbation first, as
-/// model/spatial_kernel.hpp's `second`).
+/// model/spatial_kernel.hpp's `second`): forward AD1 of the closed-form gradient Jᵀλ at the
+/// perturbed frames (x + δx', R(I + δθ'^)) and amplitudes z + δz'. Exact: `jacobian` holds at any
+/// frame matrix, and only first derivatives in δ' are taken, which R(I + δθ'^) and R exp(δθ'^)
+/// share (spatial_kernel.hpp's header). Nested AD2 of the equations, which it replaces, cost
+/// ~18 times as much (test_reduced_interface_tie.cpp compares the two to round-off).
 Eigen::Matrix<double, kVars, kVars> second(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z,
                                            const Eigen::VectorXd& lambda) {
-  const Pose<A2> bs = kernel_detail::seeded_pose2<kVars>(b, 0), fs = kernel_detail::seeded_pose2<kVars>(f, 6);
-  Vec3<A2> u, psi;
+  const Pose<A1> bs = kernel_detail::seeded_pose1<kVars>(b, 0), fs = kernel_detail::seeded_pose1<kVars>(f, 6);
+  Vec3<A1> u, psi;
   for (int i = 0; i < 3; ++i) {
-    u[i] = seeded_z2(z[i], i);
-    psi[i] = seeded_z2(z[3 + i], 3 + i);
+    u[i] = A1(z[i], A1::DerType::Unit(12 + i));
+    psi[i] = A1(z[3 + i], A1::DerType::Unit(15 + i));
   }
-  std::array<A2, 6> out;
-  tie.equations(bs, fs, u, psi, out.data());
+  const Eigen::Matrix<A1, 6, kVars> J = jacobian<A1>(tie, bs, fs, u, psi);
   Eigen::Matrix<double, kVars, kVars> H = Eigen::Matrix<double, kVars, kVars>::Zero();
-  for (int i = 0; i < 6; ++i) {
-    if (lambda[i] == 0.0) continue;
-    for (int j = 0; j < kVars; ++j) H.col(j) += lambda[i] * out[static_cast<size_t>(i)].derivatives()[j].derivatives();
+  for (int r = 0; r < 6; ++r) {
+    if (lambda[r] == 0.0) continue;
+    for (int i = 0; i < kVars; ++i) H.row(i) += lambda[r] * J(r, i).derivatives().transpose();
   }
   return H;
 }

@@ -226,10 +226,6 @@ void SpatialJoint::operator()(const Pose<S>* frames, const S& t, KernelVector<S>
   if (displacement_) out[k++] = m(drivers().displacement) - time_value<S>(*displacement_, t);  // (p_A − p_B)·b3 = u(t)
 }
 
-void SpatialJoint::evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
-  kernel_jacobian(*this, q, t, phi, phi_q);
-}
-
 namespace {
 
 // Closed-form geometric stiffness. Every equation of a spatial joint is a sum of dot products u·v of
@@ -329,6 +325,40 @@ void add_equation_second(double weight, const SpatialJointEquation& e, const Joi
     add_dot_second(t.coefficient * weight, *vectors[static_cast<int>(t.u)], *vectors[static_cast<int>(t.v)], frames, n, H);
 }
 
+/// row += c ∂(u·v)/∂δ = c (vᵀu_δ + uᵀv_δ) on the n unknowns of the joint's nodes.
+template <class Row>
+void add_dot_first(double c, const JointVector& u, const JointVector& v, int n, Row&& row) {
+  if (c == 0.0) return;
+  if (u.varies) row.noalias() += (c * v.value).transpose() * u.d1.leftCols(n);
+  if (v.varies) row.noalias() += (c * u.value).transpose() * v.d1.leftCols(n);
+}
+
+/// The vectors the equations use, by MarkerVector (a1..b3, d: only those in `uses` are set; world
+/// axes: fixed), at the given frames.
+struct JointVectors {
+  std::array<JointVector, 7> m;
+  const JointVector* v[10];
+  JointVectors(unsigned uses, const SpatialMarker& a, const SpatialMarker& b, const Pose<double>* frames) {
+    for (int i = 0; i < 3; ++i) {
+      if (uses & bit(MarkerVector(i))) set_marker_axis(m[static_cast<size_t>(i)], a, i, frames);
+      if (uses & bit(MarkerVector(3 + i))) set_marker_axis(m[static_cast<size_t>(3 + i)], b, i, frames);
+    }
+    if (uses & bit(MarkerVector::d)) set_marker_difference(m[6], a, b, frames);
+    const std::array<JointVector, 3>& e_xyz = world_axes();
+    for (int i = 0; i < 7; ++i) v[i] = &m[static_cast<size_t>(i)];
+    for (int i = 0; i < 3; ++i) v[7 + i] = &e_xyz[static_cast<size_t>(i)];
+  }
+  JointVectors(const JointVectors&) = delete;
+  JointVectors& operator=(const JointVectors&) = delete;
+};
+
+/// row += weight ∂(equation)/∂δ.
+template <class Row>
+void add_equation_first(double weight, const SpatialJointEquation& e, const JointVectors& vs, int n, Row&& row) {
+  for (const SpatialJointTerm& t : e.terms)
+    add_dot_first(t.coefficient * weight, *vs.v[static_cast<int>(t.u)], *vs.v[static_cast<int>(t.v)], n, row);
+}
+
 }  // namespace
 
 void SpatialJoint::geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
@@ -338,17 +368,9 @@ void SpatialJoint::geometric_stiffness(const Eigen::VectorXd& q, double t, const
   const kernel_detail::Poses p = kernel_detail::poses(q, nf);
   const Pose<double>* frames = p.data();
   k.setZero(n, n);
-  // The vectors the equations use, by MarkerVector (world axes: fixed).
   const DriverEquations& dr = drivers();
-  const unsigned uses = uses_;
-  std::array<JointVector, 7> m;  // a1..b3, d: only those used are set
-  for (int i = 0; i < 3; ++i) {
-    if (uses & bit(MarkerVector(i))) set_marker_axis(m[static_cast<size_t>(i)], a_, i, frames);
-    if (uses & bit(MarkerVector(3 + i))) set_marker_axis(m[static_cast<size_t>(3 + i)], b_, i, frames);
-  }
-  if (uses & bit(MarkerVector::d)) set_marker_difference(m[6], a_, b_, frames);
-  const std::array<JointVector, 3>& e_xyz = world_axes();
-  const JointVector* v[10] = {&m[0], &m[1], &m[2], &m[3], &m[4], &m[5], &m[6], &e_xyz[0], &e_xyz[1], &e_xyz[2]};
+  const JointVectors vs(uses_, a_, b_, frames);
+  const JointVector* const* v = vs.v;
   int e = 0;  // equation, in the order of operator()
   for (const SpatialJointEquation& eq : kind_->equations) add_equation_second(lambda[e++], eq, v, frames, n, k);
   if (angle_) {  // cos φ (a1·b2) + sin φ (−a1·b1)
@@ -363,6 +385,33 @@ void SpatialJoint::geometric_stiffness(const Eigen::VectorXd& q, double t, const
 void SpatialJoint::geometric_stiffness_by_ad(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
                                              Eigen::MatrixXd& k) const {
   kernel_second(*this, q, t, lambda, k);
+}
+
+void SpatialJoint::evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
+  // Φ by the kernel in doubles (the bits of the AD path's value part); Φ_q in closed form from the
+  // first derivatives of the marker vectors (JointVector::d1, the same as K_Φ's above), ~4× cheaper
+  // than forward AD over the 12 increments, which it equals to round-off (test_spatial_tangents.cpp).
+  const int nf = kernel_detail::frames_in(q);
+  const int n = 6 * nf;
+  const kernel_detail::Poses p = kernel_detail::poses(q, nf);
+  KernelVector<double> r;
+  (*this)(p.data(), t, r);
+  phi = r;
+  phi_q.setZero(size_, n);
+  const JointVectors vs(uses_, a_, b_, p.data());
+  int e = 0;  // equation, in the order of operator()
+  for (const SpatialJointEquation& eq : kind_->equations) add_equation_first(1.0, eq, vs, n, phi_q.row(e++));
+  if (angle_) {  // cos φ (a1·b2) + sin φ (−a1·b1)
+    const double angle = angle_->value(t);
+    add_equation_first(std::cos(angle), drivers().angle_cos, vs, n, phi_q.row(e));
+    add_equation_first(std::sin(angle), drivers().angle_sin, vs, n, phi_q.row(e));
+    ++e;
+  }
+  if (displacement_) add_equation_first(1.0, drivers().displacement, vs, n, phi_q.row(e++));  // −b3·d − u(t)
+}
+
+void SpatialJoint::evaluate_by_ad(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
+  kernel_jacobian(*this, q, t, phi, phi_q);
 }
 
 void SpatialJoint::time_derivative(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi_t) const {
@@ -383,7 +432,7 @@ void SpatialJoint::acceleration_term(const Eigen::VectorXd& q, const Eigen::Vect
 JointReaction SpatialJoint::reaction(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda) const {
   Eigen::VectorXd phi;
   Eigen::MatrixXd J;
-  kernel_jacobian(*this, q, t, phi, J);
+  evaluate(q, t, phi, J);
   const Eigen::VectorXd g = -J.transpose() * lambda;  // generalized force of the joint on its nodes
   const Pose<double> node1 = pose_of(q.data());
   const Pose<double> frames[2] = {node1, q.size() >= 14 ? pose_of(q.data() + 7) : node1};

@@ -454,6 +454,45 @@ TEST(JointCoordinateLink, JacobianGeometricStiffnessAndAccelerationTermMatchFini
   std::printf("[ FD       ] worst rel. error %.1e  joint coordinate link (Φ_q, K_Φ)\n", worst);
 }
 
+// The closed forms (joints/joint_coordinate.cpp: Φ_q from the first derivatives of marker axes and
+// points, K_Φ by forward AD1 of that closed form) against forward and nested AD of the equation
+// (the former implementation): equal to round-off for the four coordinates, to the ground and
+// between two nodes, at random frames and many turns of ψ.
+TEST(JointCoordinateLink, ClosedFormJacobianAndGeometricStiffnessEqualAutomaticDifferentiation) {
+  using C = JointCoordinateLink::Coordinate;
+  std::mt19937 rng(2005);
+  double worst = 0.0;
+  for (const C c : {C::rotation, C::translation, C::universal_axis, C::universal_axis2}) {
+    for (const bool ground : {false, true}) {
+      SCOPED_TRACE("coordinate " + std::to_string(static_cast<int>(c)) + (ground ? ", to the ground" : ", two nodes"));
+      const JointCoordinateLink link("l", ground ? std::vector<int>{0, 1} : std::vector<int>{0, 1, 2},
+                                     marker(0, {0.2, -0.1, 0.3}, {0.1, 0.4, -0.3}),
+                                     marker(ground ? -1 : 1, {-0.4, 0.1, 0.05}, {-0.2, 0.3, 0.6}), c);
+      for (int i = 0; i < kSamples; ++i) {
+        Eigen::VectorXd q = ground ? stored({random_pose(rng)}) : stored({random_pose(rng), random_pose(rng)});
+        q.conservativeResize(q.size() + 1);
+        q[q.size() - 1] = uniform(rng, -20.0, 20.0);
+        const Eigen::VectorXd lambda = Eigen::VectorXd::Constant(1, uniform(rng, -5.0, 5.0));
+        Eigen::VectorXd phi, phi_ad;
+        Eigen::MatrixXd phi_q, phi_q_ad, k, k_ad;
+        link.evaluate(q, 0.3, phi, phi_q);
+        link.evaluate_by_ad(q, 0.3, phi_ad, phi_q_ad);
+        link.geometric_stiffness(q, 0.3, lambda, k);
+        link.geometric_stiffness_by_ad(q, 0.3, lambda, k_ad);
+        ASSERT_EQ(phi_q.cols(), phi_q_ad.cols());
+        ASSERT_EQ(k.rows(), k_ad.rows());
+        EXPECT_LE(std::fabs(phi[0] - phi_ad[0]), 1e-15 * (1.0 + std::fabs(phi_ad[0])));
+        const double e1 = (phi_q - phi_q_ad).cwiseAbs().maxCoeff() / std::max(1.0, phi_q_ad.cwiseAbs().maxCoeff());
+        const double e2 = (k - k_ad).cwiseAbs().maxCoeff() / std::max(1.0, k_ad.cwiseAbs().maxCoeff());
+        EXPECT_LE(e1, 1e-14) << phi_q << "\n" << phi_q_ad;
+        EXPECT_LE(e2, 1e-14) << k << "\n" << k_ad;
+        worst = std::max({worst, e1, e2});
+      }
+    }
+  }
+  std::printf("joint coordinate links: closed forms against AD, worst difference %.1e (relative to the largest entry)\n", worst);
+}
+
 TEST(JointCoordinateForce, TangentsAreTheLawsDerivativesAndAMotorScalesWithTheLoadFactor) {
   const auto f = std::make_shared<ExpressionFunction>("10*(1 - speed/100) + 2*sin(angle) + t", ExpressionScope{},
                                                       std::vector<std::string>{"angle", "speed", "t"});

@@ -165,6 +165,62 @@ TEST(ReducedInterfaceTie, ClosedFormJacobianEqualsForwardADToRoundOff) {
   std::printf("reduced interface tie: closed-form Φ_q against AD, worst relative difference %.1e\n", worst);
 }
 
+// K_Φ = ∂(Φ_qᵀλ)/∂δ' by forward AD1 of the closed-form Jacobian (reduced_interface_tie.cpp,
+// `second`) against nested forward AD2 of the scalar-generic equations (the former
+// implementation, the 18 kernel variables seeded as model/spatial_kernel.hpp's `second`: outer
+// perturbation first), chained to ξ by P = diag(I₁₂, Φ_a): equal to round-off at random rotated,
+// deformed states with ψ up to ~1 rad, where ∂T(ψ)/∂ψ matters.
+TEST(ReducedInterfaceTie, GeometricStiffnessEqualsNestedForwardADToRoundOff) {
+  std::mt19937 rng(4747);
+  using A1 = ad::FixedAD1<18>;
+  using A2 = ad::FixedAD2<18>;
+  const auto seeded_z2 = [](double x, int k) {
+    A2::DerType outer;
+    for (int o = 0; o < 18; ++o) outer[o] = A1(o == 12 + k ? 1.0 : 0.0, A1::DerType::Zero());
+    return A2(A1(x, A1::DerType::Unit(12 + k)), outer);
+  };
+  double worst = 0.0;
+  for (const int m : {0, 5}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      std::vector<int> amplitudes;
+      for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
+      const MatrixXd shape = random_vector(rng, 6 * m, -0.6, 0.6).reshaped(6, m);
+      const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), random_rotation(rng), shape);
+      VectorXd q(14 + m);
+      store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data());
+      store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data() + 7);
+      q.tail(m) = random_vector(rng, m, -0.6, 0.6);
+      const VectorXd lambda = random_vector(rng, 6, -5.0, 5.0);
+      MatrixXd k;
+      tie.geometric_stiffness(q, 0.0, lambda, k);
+      const Pose<A2> bs = kernel_detail::seeded_pose2<18>(pose_of(q.data()), 0);
+      const Pose<A2> fs = kernel_detail::seeded_pose2<18>(pose_of(q.data() + 7), 6);
+      const VectorXd z = shape * q.tail(m);
+      Vec3<A2> u, psi;
+      for (int i = 0; i < 3; ++i) {
+        u[i] = seeded_z2(z[i], i);
+        psi[i] = seeded_z2(z[3 + i], 3 + i);
+      }
+      std::array<A2, 6> out;
+      tie.equations(bs, fs, u, psi, out.data());
+      MatrixXd H = MatrixXd::Zero(18, 18);
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 18; ++j) H.col(j) += lambda[i] * out[static_cast<size_t>(i)].derivatives()[j].derivatives();
+      MatrixXd P = MatrixXd::Zero(18, 12 + m);
+      P.topLeftCorner(12, 12).setIdentity();
+      P.bottomRightCorner(6, m) = shape;
+      const MatrixXd ref = P.transpose() * H * P;
+      ASSERT_EQ(k.rows(), 12 + m);
+      ASSERT_EQ(k.cols(), 12 + m);
+      const double e = (k - ref).norm() / ref.norm();
+      EXPECT_LT(e, 1e-14) << "m = " << m << ", trial " << trial << "\n" << k << "\n" << ref;
+      worst = std::max(worst, e);
+    }
+  }
+  std::printf("reduced interface tie: K_Φ by AD1 of the closed form against nested AD2, worst relative difference %.1e\n",
+              worst);
+}
+
 TEST(ReducedInterfaceTie, RefusesAShapeOfTheWrongSize) {
   EXPECT_THROW(ReducedInterfaceTie("t", 0, 1, {2, 3}, Vector3d::Zero(), Matrix3d::Identity(), MatrixXd::Zero(6, 3)),
                std::invalid_argument);

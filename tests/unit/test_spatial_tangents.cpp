@@ -558,6 +558,48 @@ TEST(SpatialJoint, ClosedFormGeometricStiffnessEqualsNestedAutomaticDifferentiat
   }
 }
 
+// The closed form of Φ_q (first derivatives of marker axes, points and d: spatial_joints.cpp)
+// against forward AD of the joint equations over the 12 increments (model/spatial_kernel.hpp), and
+// Φ itself: equal to round-off for every joint type, driver and ground case, and for a made-up row
+// with sums and coefficients.
+TEST(SpatialJoint, ClosedFormJacobianEqualsForwardAutomaticDifferentiation) {
+  std::mt19937 rng(403);
+  using V = MarkerVector;
+  const SpatialJointKind skew = SpatialJointKind::make(
+      "skew", "test only",
+      {dot(V::a1, V::d) + 2.0 * dot(V::a2, V::d), dot(V::a3, V::b1) + -0.5 * dot(V::a1, V::b2) + dot(V::e_z, V::d)},
+      SpatialJointKind::axis, SpatialJointKind::angle | SpatialJointKind::displacement);
+  std::vector<std::pair<std::string, std::shared_ptr<const SpatialJoint>>> joints;
+  for (const JointCase& c : joint_cases()) joints.emplace_back(c.label, c.joint);
+  for (int nodes = 1; nodes <= 2; ++nodes) {
+    const SpatialMarker a = marker(0, kPosA, kRotA), b = nodes == 2 ? marker(1, kPosB, kRotB) : marker(-1, kGround, kRotGround);
+    joints.emplace_back("skew, " + std::to_string(nodes) + " node(s)", make_joint(skew, nodes, a, b, true, true));
+  }
+  double worst = 0.0;
+  for (const auto& [label, joint] : joints) {
+    const int nodes = static_cast<int>(joint->nodes().size());
+    for (int i = 0; i < kSamples; ++i) {
+      SCOPED_TRACE(label + ", random configuration #" + std::to_string(i));
+      std::vector<Pose<double>> poses;
+      for (int n = 0; n < nodes; ++n) poses.push_back(random_pose(rng));
+      const Eigen::VectorXd q = stored(poses);
+      Eigen::VectorXd phi, phi_ad;
+      Eigen::MatrixXd closed, by_ad;
+      joint->evaluate(q, kT, phi, closed);
+      joint->evaluate_by_ad(q, kT, phi_ad, by_ad);
+      ASSERT_EQ(closed.rows(), by_ad.rows());
+      ASSERT_EQ(closed.cols(), by_ad.cols());
+      // The same kernel in doubles and as the AD value part: a few ulps apart at most.
+      EXPECT_LE((phi - phi_ad).cwiseAbs().maxCoeff(), 1e-15 * (1.0 + phi_ad.cwiseAbs().maxCoeff()));
+      const double d = (closed - by_ad).cwiseAbs().maxCoeff() / std::max(1.0, by_ad.cwiseAbs().maxCoeff());
+      EXPECT_LE(d, 1e-14) << "closed form:\n" << closed.format(kFmt) << "\nAD:\n" << by_ad.format(kFmt);
+      worst = std::max(worst, d);
+    }
+  }
+  std::printf("spatial joints: closed-form Φ_q against forward AD, worst difference %.1e (relative to the largest entry)\n",
+              worst);
+}
+
 TEST(SpatialJoint, TimeDerivativeMatchesFiniteDifferencesInTimeAndVanishesWithoutDrivers) {
   std::mt19937 rng(500);
   for (const JointCase& c : joint_cases()) {

@@ -25,8 +25,11 @@
 //   about b2 (2): −a1·(cos ψ b3 + sin ψ b1) = sin(ϕ2 − ψ) = 0,  ϕ2 = −atan2(a1·b3, a1·b1).
 // Neither degenerates: the joint keeps a1 ⊥ b2, so b2 stays in the plane of a2, a3 and a1 in that
 // of b1, b3 (unit projections), whatever the angles.
-// Φ_q, the geometric stiffness and the acceleration term are exact (forward AD on the group, as
-// model/spatial_kernel.hpp, with ψ as a 13th (or 7th) variable on a vector space).
+// Φ_q, the geometric stiffness and the acceleration term are exact: Φ_q in closed form (the first
+// derivatives of marker axes and points, as joints/spatial_joints.cpp), the geometric stiffness by
+// forward AD1 of that closed form at frames seeded as model/spatial_kernel.hpp's (ψ a 13th, or 7th,
+// variable on a vector space), the acceleration term by AD along the motion. The `_by_ad` variants
+// (forward and nested AD of the equation, the former implementation) check them in the tests.
 #include "alphaflex/model/constraint.hpp"
 #include "alphaflex/model/spatial_kernel.hpp"
 
@@ -46,6 +49,9 @@ class JointCoordinateLink final : public Constraint {
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
                            Eigen::MatrixXd& k) const override;
   void acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double t, Eigen::VectorXd& c) const override;
+  /// Φ and Φ_q by forward AD of the equation, and K_Φ by nested AD (the tests' check of the closed forms).
+  void evaluate_by_ad(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const;
+  void geometric_stiffness_by_ad(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda, Eigen::MatrixXd& k) const;
   /// The load on node 1 (world), about p_A, in the frame of marker A.
   JointReaction reaction(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda) const override;
 
@@ -66,6 +72,11 @@ class JointCoordinateLink final : public Constraint {
     }
     return (A.x - B.x).dot(B.R.col(2)) - psi;
   }
+
+  /// ∂Φ/∂(δ, ψ) in closed form at any frame matrices (N = 6 frames + 1 variables, ψ last; defined
+  /// and instantiated in joint_coordinate.cpp).
+  template <int N, class S>
+  Eigen::Matrix<S, 1, N> gradient(const Pose<S>* frames, const S& psi) const;
 
  private:
   int frames() const { return static_cast<int>(nodes().size()) - 1; }

@@ -100,7 +100,11 @@ class SpatialJoint final : public Constraint {
   const SpatialMarker& marker_a() const { return a_; }
   const SpatialMarker& marker_b() const { return b_; }
 
+  /// Φ, and Φ_q in closed form (the first derivatives of the marker vectors: spatial_joints.cpp).
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
+  /// The same by forward AD of the equations (model/spatial_kernel.hpp): the check of the closed
+  /// form in the tests.
+  void evaluate_by_ad(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const;
   /// K_Φ = ∂(Φ_qᵀλ)/∂δ' in closed form (every equation is a sum of dot products of marker axes,
   /// d and world axes: spatial_joints.cpp), ~20× cheaper than nested AD.
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
