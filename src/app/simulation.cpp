@@ -224,6 +224,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     if (integrator.modified_newton()) {
       sum.reused_iterations = integrator.reused_iterations();
       sum.contraction_refreshes = integrator.contraction_refreshes();
+      sum.fresh_starts = integrator.fresh_starts();
       sum.rescaled_iterations = integrator.rescaled_iterations();
     }
     sum.mumps = solver.statistics();
@@ -502,7 +503,8 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
   if (s.reused_iterations >= 0)
     os << "  modified Newton     " << s.reused_iterations << " iterations on a kept factorization (" << s.rescaled_iterations
        << " of them made for another h), " << s.contraction_refreshes
-       << " refactorizations for a contraction rate above solver.newton.max_contraction\n";
+       << " refactorizations for a contraction rate above solver.newton.max_contraction, " << s.fresh_starts
+       << " steps begun on a fresh factorization after an old one failed its first rate test\n";
   if (s.mumps.dense)
     os << "  linear solver       dense LU with partial pivoting (one rank, " << s.unknowns << " unknowns <= -af_dense_lu "
        << LinearSolver::kDenseLimit << " by default; MUMPS above)\n";

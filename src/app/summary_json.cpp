@@ -94,6 +94,7 @@ std::string summary_json(const Scene& scene, const RunSummary& s) {
   j["factorizations"] = {{"numeric", s.factorizations}, {"symbolic", s.symbolic_analyses}};
   if (s.reused_iterations >= 0)
     j["modified_newton"] = {{"reused_iterations", s.reused_iterations}, {"contraction_refreshes", s.contraction_refreshes},
+                            {"fresh_starts", s.fresh_starts},
                             {"rescaled_iterations", s.rescaled_iterations}};
   j["linear_solver"] = {{"dense", s.mumps.dense}, {"mumps", s.mumps.mumps}};
   if (s.mumps.mumps)

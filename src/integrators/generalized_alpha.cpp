@@ -1,5 +1,6 @@
 #include "alphaflex/integrators/generalized_alpha.hpp"
 
+#include <algorithm>
 #include <mpi.h>
 
 #include <cmath>
@@ -318,6 +319,20 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
   // (‖q_n‖∞ over all ranks: h and factored_h_ are the same on every rank, so all reach the all-reduce.)
   bool fresh = !(allow_reuse && (factored_h_ == h || (usable_across_h(h) &&
                                                        newton_tolerance_above_roundoff(nt, scales_.model_size, sub.max_abs(q_n)))));
+  // A step whose old S_t failed its first rate test (θ ≥ max_contraction at the second iteration)
+  // costs two iterations that full Newton does not and refactors anyway. Where that repeats step
+  // after step (a matrix one step old that does not contract: the flexible four-bar at ρ∞ ≤ 0.5
+  // gives θ ≈ 0.99 at every step, whatever h), the next steps begin on a fresh factorization —
+  // 1, 2, 4, … up to 16 of them after each failed probe, the doubling reset by a probe that passes
+  // (the rule of RADAU5 and IDA: decide on the Jacobian from the rate the last steps showed;
+  // Hairer & Wanner II, Sec. IV.8). Every rank takes the same branch (θ is of global norms).
+  bool probing = !fresh;  // this step begins on an old factorization: its first rate test decides
+  if (probing && fresh_starts_left_ > 0) {
+    --fresh_starts_left_;
+    ++fresh_starts_;
+    fresh = true;
+    probing = false;
+  }
   double prev_q = 0.0, prev_l = 0.0;  // ‖Δq‖∞, ‖Δλ‖∞ of the previous iteration
   // The multipliers' own scale (docs/theory/starting_values.md §3): besides ‖λ‖∞, the change of λ
   // that goes with a change of the coordinates by rtol S_i, Δλ₁/(rtol ρ₁) from a first full iteration
@@ -381,6 +396,15 @@ StepReport GeneralizedAlpha::try_step(MechanicalState& s, double h, double t_nex
       if (!converged && theta >= nt.max_contraction) {
         fresh = true;
         ++refreshes_;
+      }
+      if (probing && it == 2) {
+        if (fresh) {
+          fresh_run_ = std::min(fresh_run_ == 0 ? 1 : 2 * fresh_run_, 16);
+          fresh_starts_left_ = fresh_run_;
+        } else {
+          fresh_run_ = 0;
+        }
+        probing = false;
       }
     }
     // (The first iteration with an old S_t has no rate yet: one more iteration measures it.)

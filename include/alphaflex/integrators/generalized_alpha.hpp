@@ -139,7 +139,11 @@ class GeneralizedAlpha {
     opt_.newton.step_rtol = rtol;
   }
   /// The next step assembles and factors S_t afresh (modified Newton; e.g. after a checkpoint).
-  void invalidate_factorization() { factored_h_ = 0.0; }
+  void invalidate_factorization() {
+    factored_h_ = 0.0;
+    fresh_starts_left_ = 0;  // a restart knows neither: the run and its restart iterate alike
+    fresh_run_ = 0;
+  }
   /// Factorizations of S_t kept from an earlier iteration (modified Newton), and refactorizations
   /// forced by a slow contraction.
   long reused_iterations() const { return reused_; }
@@ -147,6 +151,9 @@ class GeneralizedAlpha {
   /// system's global size: the same on every rank).
   bool modified_newton() const { return modified_; }
   long contraction_refreshes() const { return refreshes_; }
+  /// Steps begun on a fresh factorization because the last step begun on an old one had to
+  /// refactor at its first rate test (modified Newton; see try_step).
+  long fresh_starts() const { return fresh_starts_; }
   const PhaseTimes& times() const { return lin_.times(); }
   PhaseTimes& times() { return lin_.times(); }
 
@@ -160,7 +167,10 @@ class GeneralizedAlpha {
   double factored_h_ = 0.0;  ///< h of the S_t now factored (0: none usable)
   double h_aux_ = 0.0;       ///< the h a_ belongs to
   bool variable_ = false, estimate_ = false, across_h_ = false;
-  long reused_ = 0, refreshes_ = 0, rescaled_ = 0;
+  long reused_ = 0, refreshes_ = 0, rescaled_ = 0, fresh_starts_ = 0;
+  /// Modified Newton: how many more steps begin on a fresh factorization, and how many the last
+  /// failed probe of an old one granted (1, 2, 4, … 16; 0: the last probe passed).
+  int fresh_starts_left_ = 0, fresh_run_ = 0;
   /// StartValues::Corrected: the start time, and the state q0, q̇0, q̈0 of the consistent start
   /// (the first step of size h from it sets a_0 = q̈_0 + Δ_α (q̈(t_0 + h) − q̈_0)).
   bool start_pending_ = false;
