@@ -174,36 +174,43 @@ JointCoordinateLink::JointCoordinateLink(std::string name, std::vector<int> node
   if (frames() < 1 || frames() > 2) throw std::invalid_argument("a joint coordinate links one or two frames and its scalar node");
 }
 
-void JointCoordinateLink::evaluate(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
+namespace {
+/// Φ and Φ_q of a link of one or two frames, in closed form or by AD (the tests' check).
+void link_first(const JointCoordinateLink& link, int frames, bool by_ad, const Eigen::VectorXd& q, Eigen::VectorXd& phi,
+                Eigen::MatrixXd& phi_q) {
   double f;
   Eigen::RowVectorXd g;
-  if (frames() == 1) first<7>(*this, q, f, g);
-  else first<13>(*this, q, f, g);
+  if (frames == 1) by_ad ? first_by_ad<7>(link, q, f, g) : first<7>(link, q, f, g);
+  else by_ad ? first_by_ad<13>(link, q, f, g) : first<13>(link, q, f, g);
   phi = Eigen::VectorXd::Constant(1, f);
   phi_q = g;
+}
+
+/// λ ∂Φ_q/∂δ' of a link of one or two frames, by AD1 of the closed form or by nested AD.
+void link_second(const JointCoordinateLink& link, int frames, bool by_ad, const Eigen::VectorXd& q, double lambda,
+                 Eigen::MatrixXd& k) {
+  if (frames == 1) by_ad ? second_by_ad<7>(link, q, k) : second<7>(link, q, k);
+  else by_ad ? second_by_ad<13>(link, q, k) : second<13>(link, q, k);
+  k *= lambda;
+}
+}  // namespace
+
+void JointCoordinateLink::evaluate(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
+  link_first(*this, frames(), false, q, phi, phi_q);
 }
 
 void JointCoordinateLink::geometric_stiffness(const Eigen::VectorXd& q, double, const Eigen::VectorXd& lambda,
                                               Eigen::MatrixXd& k) const {
-  if (frames() == 1) second<7>(*this, q, k);
-  else second<13>(*this, q, k);
-  k *= lambda[0];
+  link_second(*this, frames(), false, q, lambda[0], k);
 }
 
 void JointCoordinateLink::evaluate_by_ad(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
-  double f;
-  Eigen::RowVectorXd g;
-  if (frames() == 1) first_by_ad<7>(*this, q, f, g);
-  else first_by_ad<13>(*this, q, f, g);
-  phi = Eigen::VectorXd::Constant(1, f);
-  phi_q = g;
+  link_first(*this, frames(), true, q, phi, phi_q);
 }
 
 void JointCoordinateLink::geometric_stiffness_by_ad(const Eigen::VectorXd& q, double, const Eigen::VectorXd& lambda,
                                                     Eigen::MatrixXd& k) const {
-  if (frames() == 1) second_by_ad<7>(*this, q, k);
-  else second_by_ad<13>(*this, q, k);
-  k *= lambda[0];
+  link_second(*this, frames(), true, q, lambda[0], k);
 }
 
 void JointCoordinateLink::acceleration_term(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double,

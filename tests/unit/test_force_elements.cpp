@@ -397,6 +397,21 @@ Eigen::MatrixXd fd_link(const VectorFunction& f, const Eigen::VectorXd& q) {
   return J;
 }
 
+/// The link of the tests below: marker A on node 1, B on node 2 or the ground.
+JointCoordinateLink test_link(JointCoordinateLink::Coordinate c, bool ground) {
+  return JointCoordinateLink("l", ground ? std::vector<int>{0, 1} : std::vector<int>{0, 1, 2},
+                             marker(0, {0.2, -0.1, 0.3}, {0.1, 0.4, -0.3}),
+                             marker(ground ? -1 : 1, {-0.4, 0.1, 0.05}, {-0.2, 0.3, 0.6}), c);
+}
+
+/// Random frames (one, or two) and ψ over many turns.
+Eigen::VectorXd random_link_configuration(std::mt19937& rng, bool ground) {
+  Eigen::VectorXd q = ground ? stored({random_pose(rng)}) : stored({random_pose(rng), random_pose(rng)});
+  q.conservativeResize(q.size() + 1);
+  q[q.size() - 1] = uniform(rng, -20.0, 20.0);
+  return q;
+}
+
 }  // namespace
 
 TEST(JointCoordinateLink, JacobianGeometricStiffnessAndAccelerationTermMatchFiniteDifferences) {
@@ -406,13 +421,9 @@ TEST(JointCoordinateLink, JacobianGeometricStiffnessAndAccelerationTermMatchFini
     for (const bool ground : {false, true}) {
       SCOPED_TRACE(std::string(c == JointCoordinateLink::Coordinate::rotation ? "rotation" : "translation") +
                    (ground ? ", to the ground" : ", two nodes"));
-      const JointCoordinateLink link("l", ground ? std::vector<int>{0, 1} : std::vector<int>{0, 1, 2},
-                                     marker(0, {0.2, -0.1, 0.3}, {0.1, 0.4, -0.3}),
-                                     marker(ground ? -1 : 1, {-0.4, 0.1, 0.05}, {-0.2, 0.3, 0.6}), c);
+      const JointCoordinateLink link = test_link(c, ground);
       for (int i = 0; i < kSamples; ++i) {
-        Eigen::VectorXd q = ground ? stored({random_pose(rng)}) : stored({random_pose(rng), random_pose(rng)});
-        q.conservativeResize(q.size() + 1);
-        q[q.size() - 1] = uniform(rng, -20.0, 20.0);  // many turns
+        const Eigen::VectorXd q = random_link_configuration(rng, ground);
         const Eigen::Index n = (q.size() - 1) / 7 * 6 + 1;
         const Eigen::VectorXd v = random_vector(rng, static_cast<int>(n), -2.0, 2.0);
         const double t = 0.3, lambda = uniform(rng, -5.0, 5.0);
@@ -465,13 +476,9 @@ TEST(JointCoordinateLink, ClosedFormJacobianAndGeometricStiffnessEqualAutomaticD
   for (const C c : {C::rotation, C::translation, C::universal_axis, C::universal_axis2}) {
     for (const bool ground : {false, true}) {
       SCOPED_TRACE("coordinate " + std::to_string(static_cast<int>(c)) + (ground ? ", to the ground" : ", two nodes"));
-      const JointCoordinateLink link("l", ground ? std::vector<int>{0, 1} : std::vector<int>{0, 1, 2},
-                                     marker(0, {0.2, -0.1, 0.3}, {0.1, 0.4, -0.3}),
-                                     marker(ground ? -1 : 1, {-0.4, 0.1, 0.05}, {-0.2, 0.3, 0.6}), c);
+      const JointCoordinateLink link = test_link(c, ground);
       for (int i = 0; i < kSamples; ++i) {
-        Eigen::VectorXd q = ground ? stored({random_pose(rng)}) : stored({random_pose(rng), random_pose(rng)});
-        q.conservativeResize(q.size() + 1);
-        q[q.size() - 1] = uniform(rng, -20.0, 20.0);
+        const Eigen::VectorXd q = random_link_configuration(rng, ground);
         const Eigen::VectorXd lambda = Eigen::VectorXd::Constant(1, uniform(rng, -5.0, 5.0));
         Eigen::VectorXd phi, phi_ad;
         Eigen::MatrixXd phi_q, phi_q_ad, k, k_ad;

@@ -44,6 +44,25 @@ VectorXd retract_tie(const VectorXd& q, const VectorXd& d) {
   return out;
 }
 
+/// A tie with m amplitudes (nodes 0, 1, 2 …) at a random rotated, deformed state, ψ up to ~1 rad
+/// (T(ψ) far from I): its shape Φ_a and its local configuration q.
+struct TieAtRandomState {
+  MatrixXd shape;
+  ReducedInterfaceTie tie;
+  VectorXd q;
+};
+TieAtRandomState random_tie_state(std::mt19937& rng, int m) {
+  std::vector<int> amplitudes;
+  for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
+  const MatrixXd shape = random_vector(rng, 6 * m, -0.6, 0.6).reshaped(6, m);
+  const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), random_rotation(rng), shape);
+  VectorXd q(14 + m);
+  store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data());
+  store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data() + 7);
+  q.tail(m) = random_vector(rng, m, -0.6, 0.6);
+  return {shape, tie, q};
+}
+
 /// Central differences of f along the tie's increments (h = 1e-6: truncation and round-off ~1e-10
 /// relative).
 MatrixXd fd_tie(const testing::VectorFunction& f, const VectorXd& q) {
@@ -125,14 +144,7 @@ TEST(ReducedInterfaceTie, ClosedFormJacobianEqualsForwardADToRoundOff) {
   double worst = 0.0;
   for (int trial = 0; trial < 6; ++trial) {
     const int m = 5;
-    std::vector<int> amplitudes;
-    for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
-    const MatrixXd shape = random_vector(rng, 6 * m, -0.6, 0.6).reshaped(6, m);
-    const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), random_rotation(rng), shape);
-    VectorXd q(14 + m);
-    store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data());
-    store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data() + 7);
-    q.tail(m) = random_vector(rng, m, -0.6, 0.6);
+    const auto [shape, tie, q] = random_tie_state(rng, m);
     VectorXd phi;
     MatrixXd phi_q;
     tie.evaluate(q, 0.0, phi, phi_q);
@@ -182,14 +194,7 @@ TEST(ReducedInterfaceTie, GeometricStiffnessEqualsNestedForwardADToRoundOff) {
   double worst = 0.0;
   for (const int m : {0, 5}) {
     for (int trial = 0; trial < 5; ++trial) {
-      std::vector<int> amplitudes;
-      for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
-      const MatrixXd shape = random_vector(rng, 6 * m, -0.6, 0.6).reshaped(6, m);
-      const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), random_rotation(rng), shape);
-      VectorXd q(14 + m);
-      store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data());
-      store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data() + 7);
-      q.tail(m) = random_vector(rng, m, -0.6, 0.6);
+      const auto [shape, tie, q] = random_tie_state(rng, m);
       const VectorXd lambda = random_vector(rng, 6, -5.0, 5.0);
       MatrixXd k;
       tie.geometric_stiffness(q, 0.0, lambda, k);
