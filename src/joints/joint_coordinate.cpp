@@ -51,9 +51,9 @@ MarkerVectorAt<S, N> point_at(const SpatialMarker& m, const Pose<S>* frames) {
 
 }  // namespace
 
-/// ∂Φ/∂(δ, ψ) in closed form. Every rotation equation is σ u·(cos ψ v + sin ψ w) with marker axes
-/// u, v, w (header): its gradient is σ [(cos ψ v + sin ψ w)ᵀ u_δ + uᵀ(cos ψ v_δ + sin ψ w_δ)] and
-/// ∂/∂ψ = σ u·(−sin ψ v + cos ψ w); the translation (p_A − p_B)·b3 − ψ has
+/// ∂Φ/∂(δ, ψ) in closed form. Every rotation equation is σ u·(cos ψ v + ν sin ψ w) with marker axes
+/// u, v, w and signs σ, ν = ±1 (header): its gradient is σ [(cos ψ v + ν sin ψ w)ᵀ u_δ +
+/// uᵀ(cos ψ v_δ + ν sin ψ w_δ)] and ∂/∂ψ = σ u·(−sin ψ v + ν cos ψ w); the translation (p_A − p_B)·b3 − ψ has
 /// b3ᵀ(p_A,δ − p_B,δ) + (p_A − p_B)ᵀ b3,δ and −1.
 template <int N, class S>
 Eigen::Matrix<S, 1, N> JointCoordinateLink::gradient(const Pose<S>* frames, const S& psi) const {
