@@ -89,6 +89,20 @@ Eigen::Matrix<S, 1, N> JointCoordinateLink::gradient(const Pose<S>* frames, cons
 
 namespace {
 
+/// The link's frames and ψ seeded for forward AD1 over its N = 6 nf + 1 variables (ψ last).
+template <int N>
+struct Seeded1 {
+  using A = ad::FixedAD1<N>;
+  std::array<Pose<A>, N / 6> frames;
+  A psi;
+  explicit Seeded1(const Eigen::VectorXd& q) {
+    constexpr int nf = N / 6;
+    const auto p = frames_of(q, nf);
+    for (int k = 0; k < nf; ++k) frames[static_cast<size_t>(k)] = kernel_detail::seeded_pose1<N>(p[static_cast<size_t>(k)], 6 * k);
+    psi = A(q[7 * nf], A::DerType::Unit(N - 1));
+  }
+};
+
 /// Φ and its gradient in closed form (N = 6 nf + 1 variables, ψ last).
 template <int N, class Link>
 void first(const Link& link, const Eigen::VectorXd& q, double& phi, Eigen::RowVectorXd& grad) {
@@ -101,13 +115,8 @@ void first(const Link& link, const Eigen::VectorXd& q, double& phi, Eigen::RowVe
 /// Φ and its gradient by forward AD of the equation (the check of the closed form in the tests).
 template <int N, class Link>
 void first_by_ad(const Link& link, const Eigen::VectorXd& q, double& phi, Eigen::RowVectorXd& grad) {
-  using A = ad::FixedAD1<N>;
-  constexpr int nf = N / 6;
-  const auto p = frames_of(q, nf);
-  std::array<Pose<A>, nf> ps;
-  for (int k = 0; k < nf; ++k) ps[static_cast<size_t>(k)] = kernel_detail::seeded_pose1<N>(p[static_cast<size_t>(k)], 6 * k);
-  const A psi(q[7 * nf], A::DerType::Unit(N - 1));
-  const A f = link.equation(ps.data(), psi);
+  const Seeded1<N> x(q);
+  const ad::FixedAD1<N> f = link.equation(x.frames.data(), x.psi);
   phi = f.value();
   grad = f.derivatives().transpose();
 }
@@ -117,12 +126,8 @@ void first_by_ad(const Link& link, const Eigen::VectorXd& q, double& phi, Eigen:
 template <int N, class Link>
 void second(const Link& link, const Eigen::VectorXd& q, Eigen::MatrixXd& H) {
   using A = ad::FixedAD1<N>;
-  constexpr int nf = N / 6;
-  const auto p = frames_of(q, nf);
-  std::array<Pose<A>, nf> ps;
-  for (int k = 0; k < nf; ++k) ps[static_cast<size_t>(k)] = kernel_detail::seeded_pose1<N>(p[static_cast<size_t>(k)], 6 * k);
-  const A psi(q[7 * nf], A::DerType::Unit(N - 1));
-  const Eigen::Matrix<A, 1, N> g = link.template gradient<N, A>(ps.data(), psi);
+  const Seeded1<N> x(q);
+  const Eigen::Matrix<A, 1, N> g = link.template gradient<N, A>(x.frames.data(), x.psi);
   H.resize(N, N);
   for (int i = 0; i < N; ++i) H.row(i) = g[i].derivatives().transpose();
 }

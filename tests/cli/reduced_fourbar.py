@@ -12,7 +12,6 @@ Errors are max |reduced - full| over the run, in units of the full run's range o
 (the issue's measure, as the fidelity study's). Bounds: the issue's 1 % for every rung, the crank
 torque's convergence with the modes, and 2 ranks = 1 rank to round-off; the measured values are
 stated at the checks (docs/benchmarks/reduced.md)."""
-import argparse
 import sys
 
 import reduced_pendulum
@@ -37,11 +36,7 @@ def run(a, name, args, np=1):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--exe", required=True)
-    p.add_argument("--scene", required=True)
-    p.add_argument("--mpirun", required=True)
-    p.add_argument("--out", required=True)
+    p = reduced_pendulum.cli_parser()
     p.add_argument("--t-end", type=float, default=1.0)
     p.add_argument("--modes", type=int, nargs="+", default=[2, 8])  # the ctest's: --check compares 8 with 2
     p.add_argument("--check", action="store_true", help="check the bounds (the ctest); otherwise only print")

@@ -12,18 +12,14 @@ Checks (errors = max |reduced - full| over the run / the full run's range, the i
   (the same curves) to round-off (1e-9), while the leg's own section, reduced in the union,
   is visible: with the arm's section the tip's sag differs from the full meshes > 5 times more;
 - 2 ranks agree with 1 rank to round-off (1e-10)."""
-import argparse
 import sys
 
+import reduced_pendulum
 from reduced_pendulum import error, run
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--exe", required=True)
-    p.add_argument("--scene", required=True)
-    p.add_argument("--mpirun", required=True)
-    p.add_argument("--out", required=True)
+    p = reduced_pendulum.cli_parser()
     a = p.parse_args()
     union = lambda extra="": ["--set", "beams.0.reduction={method: craig_bampton, modes: 8, interface: [root, tip], blocks: [leg]" + extra + "}"]
     full = run(a, "full", [])

@@ -19,6 +19,16 @@ import subprocess
 import sys
 
 
+def cli_parser():
+    """The arguments every reduced-body ctest script takes (tests/CMakeLists.txt passes them)."""
+    p = argparse.ArgumentParser()
+    p.add_argument("--exe", required=True)
+    p.add_argument("--scene", required=True)
+    p.add_argument("--mpirun", required=True)
+    p.add_argument("--out", required=True)
+    return p
+
+
 def run(a, name, args, np=1, timeout=60):
     """Runs a.scene into a.out/name with the extra arguments; its sensor CSV as columns (also used by
     reduced_fourbar.py)."""
@@ -39,11 +49,7 @@ def error(ref, x, k):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--exe", required=True)
-    p.add_argument("--scene", required=True)
-    p.add_argument("--mpirun", required=True)
-    p.add_argument("--out", required=True)
+    p = cli_parser()
     a = p.parse_args()
     red = lambda r: ["--set", "beams.0.reduction=" + r]
     full = run(a, "full", [])

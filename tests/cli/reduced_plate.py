@@ -17,7 +17,6 @@ measure of reduced_pendulum.py / docs/benchmarks/reduced.md).
 - 2 ranks against 1 (8 modes): every sensor to 1e-10 relative to its range.
 - No spurious membrane stress: the rebuilt n11 of the bent plate is zero (to 1e-12 of the bending stress).
 - The HDF5 results hold the rebuilt shell mesh (reduced_shell_* datasets) with von Mises fields."""
-import argparse
 import glob
 import math
 import sys
@@ -35,11 +34,7 @@ def errors(ref, x):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--exe", required=True)
-    p.add_argument("--scene", required=True)
-    p.add_argument("--mpirun", required=True)
-    p.add_argument("--out", required=True)
+    p = reduced_pendulum.cli_parser()
     a = p.parse_args()
     red = lambda k: ["--set", f"shells.0.reduction={{method: craig_bampton, modes: {k}, interface: [centre]}}"]
     small = ["--set", "gravity=[0, 0, -0.0981]"]

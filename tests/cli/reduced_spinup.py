@@ -16,12 +16,13 @@ range) — but is not yet accurate: measured 0.47 of the range with 8 modes, too
 start, because the basis cannot represent the foreshortening u = -1/2 int w'^2 of the bending
 shapes, so the quartic energy charges bending with spurious membrane strain (EA/EI = 2000 here);
 docs/benchmarks/reduced.md, docs/theory/reduced_bodies.md "Geometric stiffness"."""
-import argparse
 import csv
 import glob
 import math
 import subprocess
 import sys
+
+import reduced_pendulum
 
 SENSORS = ("sensors=[{name: dx, type: point_displacement, body: tip, component: x},"
            " {name: dy, type: point_displacement, body: tip, component: y},"
@@ -58,11 +59,7 @@ def error(ref, x, k):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--exe", required=True)
-    p.add_argument("--scene", required=True)
-    p.add_argument("--mpirun", required=True)
-    p.add_argument("--out", required=True)
+    p = reduced_pendulum.cli_parser()
     p.add_argument("--t-end", type=float, default=12.0)
     p.add_argument("--modes", type=int, default=8)
     p.add_argument("--bound", type=float, default=1.0)

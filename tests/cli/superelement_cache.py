@@ -16,22 +16,19 @@ Checks:
   the file 2 ranks wrote gives the 1-rank CSV;
 - a cache path that cannot be read or written (a directory of that name) is a warning, never a
   failed run: the results are all there."""
-import argparse
 import os
 import shutil
 import subprocess
 import sys
+
+import reduced_pendulum
 
 NAME = "reduced_pendulum"
 RED = "beams.0.reduction={method: craig_bampton, modes: %d, interface: [root], geometric_stiffness: on}"
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--exe", required=True)
-    p.add_argument("--scene", required=True)
-    p.add_argument("--mpirun", required=True)
-    p.add_argument("--out", required=True)
+    p = reduced_pendulum.cli_parser()
     a = p.parse_args()
     shutil.rmtree(a.out, ignore_errors=True)
     ok = True

@@ -790,6 +790,40 @@ void full_static_system(const Bar& b, const BlockMatrices& block, const VectorXd
   }
 }
 
+// The full nonlinear mesh's static equilibrium under the dead loads `load` with node 0 clamped
+// (`free_rows`: the rows 6 … n − 1), by Newton on the frames from the initial state.
+VectorXd full_static_solution(const Bar& bar, const BlockMatrices& block, const VectorXd& load, const std::vector<int>& free_rows) {
+  const Eigen::Index nrows = load.size();
+  VectorXd q = bar.model.initial_state().q;
+  for (int it = 0; it < 30; ++it) {
+    VectorXd r;
+    MatrixXd K;
+    full_static_system(bar, block, q, r, K);
+    const VectorXd g = VectorXd(r - load).tail(nrows - 6);
+    if (g.norm() < 1e-10 * load.norm()) break;
+    VectorXd dx = VectorXd::Zero(nrows);
+    dx.tail(nrows - 6) = -sub(K, free_rows).lu().solve(g);
+    bar.model.retract(q, dx);
+  }
+  return q;
+}
+
+// The reduced body's static equilibrium K̃ξ + ½T[ξ,ξ] + ⅙Q[ξ,ξ,ξ] = f̃ by Newton (at most
+// `iterations`), f̃ the tip's translation rows of the basis times the tip load in the frame's axes.
+VectorXd reduced_static_amplitudes(const ReducedBodyMatrices& d, const MatrixXd& tip_shape, const Matrix3d& R0,
+                                   const Vector3d& tip_load, int iterations) {
+  const VectorXd f = tip_shape.topRows<3>().transpose() * (R0.transpose() * tip_load);
+  VectorXd xi = VectorXd::Zero(d.elastic());
+  for (int it = 0; it < iterations; ++it) {
+    MatrixXd G1, G2;
+    d.geometric_terms(xi, G1, G2);
+    const VectorXd g = d.elastic_force(xi) - f;
+    if (g.norm() < 1e-12 * f.norm()) break;
+    xi -= (d.K + G1 + 0.5 * G2).lu().solve(g);
+  }
+  return xi;
+}
+
 // The reduced body with geometric stiffness: its tangent against central differences (the cubic
 // term's ½T[ξ,ξ] and T[ξ]), the closed form against AD of the scalar-generic residual, and the
 // elastic force against the gradient of elastic_energy (U = ½ξᵀK̃ξ + ⅙T[ξ,ξ,ξ]). Amplitudes of
@@ -998,17 +1032,7 @@ TEST(ReducedBodyGeometricStiffness, TensionStiffensTheCantileverAsTheFullMeshAnd
   const double analytic = 3.0 * (kL - std::tanh(kL)) / (kL * kL * kL);
   load.segment<3>(block.row_of(tip)) += P * axis;
   // Full nonlinear mesh: Newton on the frames (node 0 clamped), dead loads.
-  VectorXd q = bar.model.initial_state().q;
-  for (int it = 0; it < 30; ++it) {
-    VectorXd r;
-    MatrixXd K;
-    full_static_system(bar, block, q, r, K);
-    const VectorXd g = VectorXd(r - load).tail(nrows - 6);
-    if (g.norm() < 1e-10 * load.norm()) break;
-    VectorXd dx = VectorXd::Zero(nrows);
-    dx.tail(nrows - 6) = -sub(K, free_rows).lu().solve(g);
-    bar.model.retract(q, dx);
-  }
+  const VectorXd q = full_static_solution(bar, block, load, free_rows);
   const Pose<double> p0 = pose_of(bar.model.node(0).q0.data());
   const Vector3d tip0 = pose_of(bar.model.node(tip).q0.data()).x;
   const double w_full = e2.dot(pose_of(q.data() + 7 * tip).x - tip0);
@@ -1018,17 +1042,8 @@ TEST(ReducedBodyGeometricStiffness, TensionStiffensTheCantileverAsTheFullMeshAnd
     ReducedBlock rg = rb;
     if (geometric) nonlinear_stiffness(bar.model, bar.elements, block, rg);
     const ReducedBodyMatrices& d = rg.matrices;
-    const int m = d.elastic();
     const size_t a = static_cast<size_t>(tip);  // block order = node order
-    const VectorXd f = rb.shapes[a].topRows<3>().transpose() * (p0.R.transpose() * Vector3d(load.segment<3>(block.row_of(tip))));
-    VectorXd xi = VectorXd::Zero(m);
-    for (int it = 0; it < 30; ++it) {
-      MatrixXd G1, G2;
-      d.geometric_terms(xi, G1, G2);
-      const VectorXd g = d.elastic_force(xi) - f;
-      if (g.norm() < 1e-12 * f.norm()) break;
-      xi -= (d.K + G1 + 0.5 * G2).lu().solve(g);
-    }
+    const VectorXd xi = reduced_static_amplitudes(d, rb.shapes[a], p0.R, load.segment<3>(block.row_of(tip)), 30);
     return e2.dot(p0.R * (rb.shapes[a].topRows<3>() * xi));
   };
   const int all = 24;  // of 42: the quartic term's m⁴ storage and 4m³/3 evaluations; 24 converge already
@@ -1072,17 +1087,7 @@ TEST(ModalDerivatives, RemoveTheMembraneLockingOfATruncatedBasisUnderGeometricSt
   const VectorXd unit = sub(block.K, free_rows).ldlt().solve(VectorXd(load.tail(nrows - 6)));
   const double F = 0.03 * L / e2.dot(unit.segment<3>(block.row_of(tip) - 6));
   load *= F;
-  VectorXd q = bar.model.initial_state().q;
-  for (int it = 0; it < 30; ++it) {
-    VectorXd r;
-    MatrixXd K;
-    full_static_system(bar, block, q, r, K);
-    const VectorXd g = VectorXd(r - load).tail(nrows - 6);
-    if (g.norm() < 1e-10 * load.norm()) break;
-    VectorXd dx = VectorXd::Zero(nrows);
-    dx.tail(nrows - 6) = -sub(K, free_rows).lu().solve(g);
-    bar.model.retract(q, dx);
-  }
+  const VectorXd q = full_static_solution(bar, block, load, free_rows);
   const Pose<double> p0 = pose_of(bar.model.node(0).q0.data());
   const double w_full = e2.dot(pose_of(q.data() + 7 * tip).x - pose_of(bar.model.node(tip).q0.data()).x);
   ASSERT_NEAR(w_full / (0.03 * L), 1.0, 0.01);  // small rotations: the mesh is nearly linear here
@@ -1093,15 +1098,7 @@ TEST(ModalDerivatives, RemoveTheMembraneLockingOfATruncatedBasisUnderGeometricSt
     if (geometric) nonlinear_stiffness(bar.model, bar.elements, block, rb);
     const ReducedBodyMatrices& d = rb.matrices;
     const size_t a = static_cast<size_t>(tip);
-    const VectorXd f = rb.shapes[a].topRows<3>().transpose() * (p0.R.transpose() * Vector3d(load.segment<3>(block.row_of(tip))));
-    VectorXd xi = VectorXd::Zero(d.elastic());
-    for (int it = 0; it < 50; ++it) {
-      MatrixXd G1, G2;
-      d.geometric_terms(xi, G1, G2);
-      const VectorXd g = d.elastic_force(xi) - f;
-      if (g.norm() < 1e-12 * f.norm()) break;
-      xi -= (d.K + G1 + 0.5 * G2).lu().solve(g);
-    }
+    const VectorXd xi = reduced_static_amplitudes(d, rb.shapes[a], p0.R, load.segment<3>(block.row_of(tip)), 50);
     return e2.dot(p0.R * (rb.shapes[a].topRows<3>() * xi));
   };
   int added = 0;
