@@ -6,6 +6,8 @@
 #include <sstream>
 #include <string>
 
+#include <petscblaslapack.h>
+
 #include "alphaflex/core/blas_library.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/memory.hpp"
@@ -104,8 +106,7 @@ PetscErrorCode LinearSolver::choose_backend(Mat A) {
   backend_ = (size == 1 && n <= limit && !chosen && low_rank_ <= 0.0) ? Backend::Dense : Backend::Krylov;
   if (backend_ == Backend::Dense) {
     dense_.setZero(n, n);
-    lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
-    rhs_.setZero(n);
+    pivots_.assign(static_cast<size_t>(n), 0);
   }
   PetscFunctionReturn(0);
 }
@@ -123,17 +124,26 @@ PetscErrorCode LinearSolver::factor_dense(Mat A) {
     for (PetscInt k = 0; k < nz; ++k) dense_(i, cols[k]) = vals[k];
     PetscCall(MatRestoreRow(A, i, &nz, &cols, &vals));
   }
-  lu_.compute(dense_);
+  // LAPACK's dgetrf on the column-major storage, in place: the blocked right-looking LU with row
+  // pivoting, on the BLAS the package set installs (OpenBLAS, scripts/install-deps.sh) — 1.8×
+  // Eigen's PartialPivLU at 100–150 unknowns on this machine (Eigen's kernels are built for SSE2,
+  // OpenBLAS picks AVX2 at run time; docs/performance.md, "Small systems"), the same algorithm.
+  PetscBLASInt bn = 0, info = 0;
+  PetscCall(PetscBLASIntCast(n, &bn));
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, dense_.data(), &bn, pivots_.data(), &info));
+  PetscCheck(info >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getrf: argument %d is illegal", -static_cast<int>(info));
   ++numeric_;
   if (determinant_) {
     // sign(det) = sign(det P) · Π sign(u_ii): the product itself over/underflows for n ~ 100.
-    int sign = static_cast<int>(lu_.permutationP().determinant());
-    for (Eigen::Index i = 0; i < n; ++i) sign *= lu_.matrixLU()(i, i) < 0.0 ? -1 : 1;
+    // pivots_[i] (1-based) is the row swapped with row i: each swap flips the sign.
+    int sign = 1;
+    for (PetscInt i = 0; i < n; ++i) sign *= (pivots_[static_cast<size_t>(i)] != i + 1 ? -1 : 1) * (dense_(i, i) < 0.0 ? -1 : 1);
     det_sign_ = sign;
   }
-  // A zero (or non-finite) pivot after partial pivoting: the matrix is singular, as MUMPS' -10.
-  const auto d = lu_.matrixLU().diagonal();
-  bool singular = false;
+  // A zero (or non-finite) pivot after partial pivoting (info > 0: u_ii exactly zero): the matrix
+  // is singular, as MUMPS' -10.
+  const auto d = dense_.diagonal();
+  bool singular = info > 0;
   for (Eigen::Index i = 0; i < d.size(); ++i) singular = singular || !(std::fabs(d[i]) > 0.0) || !std::isfinite(d[i]);
   if (singular) failure_ = "factorization failed: dense LU found a zero pivot (numerically singular matrix)";
   stats_ = FactorStatistics{};
@@ -354,16 +364,15 @@ PetscErrorCode LinearSolver::solve(Vec b, Vec x) {
   PetscFunctionBeginUser;
   if (!failure_.empty()) PetscFunctionReturn(0);
   if (backend_ == Backend::Dense) {
-    const PetscScalar* bb = nullptr;
+    PetscCall(VecCopy(b, x));
     PetscScalar* xx = nullptr;
-    PetscCall(VecGetArrayRead(b, &bb));
-    rhs_ = Eigen::Map<const Eigen::VectorXd>(bb, rhs_.size());
-    PetscCall(VecRestoreArrayRead(b, &bb));
+    PetscBLASInt bn = 0, one = 1, info = 0;
+    PetscCall(PetscBLASIntCast(dense_.rows(), &bn));
     PetscCall(VecGetArray(x, &xx));
-    Eigen::Map<Eigen::VectorXd> xm(xx, rhs_.size());
-    xm = lu_.solve(rhs_);
-    if (!xm.allFinite()) failure_ = "solve failed: the dense LU solution is not finite";
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, dense_.data(), &bn, pivots_.data(), xx, &bn, &info));
+    if (!Eigen::Map<Eigen::VectorXd>(xx, dense_.rows()).allFinite()) failure_ = "solve failed: the dense LU solution is not finite";
     PetscCall(VecRestoreArray(x, &xx));
+    PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getrs: argument %d is illegal", -static_cast<int>(info));
     PetscFunctionReturn(0);
   }
   PetscCall(KSPSolve(ksp_, b, x));

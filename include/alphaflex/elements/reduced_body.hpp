@@ -33,8 +33,9 @@ namespace alphaflex {
 /// stored by its unique entries only — i ≤ j ≤ k (≤ l), lexicographic — C(m + 2, 3) and C(m + 3, 4)
 /// numbers instead of m³ and m⁴ (m = 14: 560 and 2380 for 2744 and 38 416). Its contraction over
 /// the last indices runs on the index pairs p ≤ q (P = m(m + 1)/2 of them): a P × m (order 3) or
-/// P × P (order 4) matrix of the unique entries, each column (k, l) weighted by its multiplicity
-/// (1 if k = l, else 2), made once (docs/theory/reduced_bodies.md, "Geometric stiffness", cost).
+/// symmetric P × P (order 4, the BLAS's symmetric product, the vector of pairs (k, l) weighted by
+/// their multiplicity, 1 if k = l, else 2) matrix of the unique entries, made once
+/// (docs/theory/reduced_bodies.md, "Geometric stiffness", cost).
 class SymmetricTensor {
  public:
   SymmetricTensor() = default;
@@ -79,7 +80,7 @@ class SymmetricTensor {
   int order_ = 0, dim_ = 0;
   std::vector<double> values_;
   // The contraction's matrix: rows the pairs (p ≤ q), columns the indices k (order 3) or the pairs
-  // (k ≤ l) times their multiplicity (order 4), in lexicographic pair order.
+  // (k ≤ l) (order 4: symmetric), in lexicographic pair order.
   Eigen::MatrixXd pairs_;
 };
 

@@ -5,7 +5,7 @@
 // overridden from the options database (-ksp_type, -pc_type, -pc_factor_mat_solver_type,
 // -mat_mumps_icntl_*, ...).
 //
-// Small systems on one rank take a dense path instead: LU with partial pivoting (Eigen) of the
+// Small systems on one rank take a dense path instead: LU with partial pivoting (LAPACK) of the
 // matrix copied into preallocated dense storage. Below a few hundred unknowns MUMPS' fixed cost
 // per call (its driver, ~90 µs per factorization and per solve in MUMPS 5.5 whatever the size:
 // docs/performance.md) is far above the O(n³) work; the dense path has no allocation per call.
@@ -15,6 +15,7 @@
 
 #include <Eigen/Dense>
 #include <string>
+#include <vector>
 
 namespace alphaflex {
 
@@ -47,8 +48,10 @@ struct FactorEstimate {
 class LinearSolver {
  public:
   /// Unknowns up to which one rank factors densely unless -af_dense_lu says otherwise (measured:
-  /// docs/performance.md, "small systems").
-  static constexpr int kDenseLimit = 150;
+  /// docs/performance.md, "small systems": with LAPACK on OpenBLAS the dense path is ahead of MUMPS
+  /// up to ~200 unknowns on the sparsest systems, banded beams, and at 153 on the reduced four-bar
+  /// 1.65× per step; 150 with Eigen's LU before).
+  static constexpr int kDenseLimit = 200;
 
   /// `low_rank` > 0: MUMPS' block low-rank factorization with that dropping tolerance (CNTL(7),
   /// relative to the norm of each block; solver.linear.low_rank); it implies the MUMPS path.
@@ -111,9 +114,8 @@ class LinearSolver {
 
   enum class Backend { Undecided, Dense, Krylov } backend_ = Backend::Undecided;
   MPI_Comm comm_;
-  Eigen::MatrixXd dense_;                   ///< the matrix copied from A (preallocated)
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  ///< its factors (storage reused: no allocation)
-  Eigen::VectorXd rhs_;
+  Eigen::MatrixXd dense_;              ///< the matrix copied from A, then its LU factors in place (preallocated)
+  std::vector<PetscBLASInt> pivots_;  ///< LAPACK's row interchanges (1-based)
 
   KSP ksp_ = nullptr;
   std::string failure_;
