@@ -130,7 +130,8 @@ PetscErrorCode LinearSolver::factor_dense(Mat A) {
   // OpenBLAS picks AVX2 at run time; docs/performance.md, "Small systems"), the same algorithm.
   PetscBLASInt bn = 0, info = 0;
   PetscCall(PetscBLASIntCast(n, &bn));
-  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, dense_.data(), &bn, pivots_.data(), &info));
+  const PetscBLASInt lda = std::max<PetscBLASInt>(bn, 1);  // LAPACK asks LDA ≥ max(1, N), also for N = 0
+  PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, dense_.data(), &lda, pivots_.data(), &info));
   PetscCheck(info >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getrf: argument %d is illegal", -static_cast<int>(info));
   ++numeric_;
   if (determinant_) {
@@ -368,8 +369,9 @@ PetscErrorCode LinearSolver::solve(Vec b, Vec x) {
     PetscScalar* xx = nullptr;
     PetscBLASInt bn = 0, one = 1, info = 0;
     PetscCall(PetscBLASIntCast(dense_.rows(), &bn));
+    const PetscBLASInt lda = std::max<PetscBLASInt>(bn, 1);
     PetscCall(VecGetArray(x, &xx));
-    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, dense_.data(), &bn, pivots_.data(), xx, &bn, &info));
+    PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bn, &one, dense_.data(), &lda, pivots_.data(), xx, &lda, &info));
     if (!Eigen::Map<Eigen::VectorXd>(xx, dense_.rows()).allFinite()) failure_ = "solve failed: the dense LU solution is not finite";
     PetscCall(VecRestoreArray(x, &xx));
     PetscCheck(info == 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getrs: argument %d is illegal", -static_cast<int>(info));
