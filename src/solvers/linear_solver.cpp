@@ -128,12 +128,23 @@ PetscErrorCode LinearSolver::factor_dense(Mat A) {
   // pivoting, on the BLAS the package set installs (OpenBLAS, scripts/install-deps.sh) — 1.8×
   // Eigen's PartialPivLU at 100–150 unknowns on this machine (Eigen's kernels are built for SSE2,
   // OpenBLAS picks AVX2 at run time; docs/performance.md, "Small systems"), the same algorithm.
+  stats_ = FactorStatistics{};
+  stats_.dense = true;
+  stats_.entries = static_cast<double>(n) * static_cast<double>(n);
+  stats_.flops = 2.0 / 3.0 * static_cast<double>(n) * static_cast<double>(n) * static_cast<double>(n);
+  stats_.memory_max_mb = stats_.memory_sum_mb = stats_.entries * 8.0 / 1048576.0;  // factored in place
+  ++numeric_;
+  // A NaN or Inf entry (an element evaluated where it has no value) is not given to LAPACK, whose
+  // pivot search is not defined for it (OpenBLAS has returned out-of-range pivots then).
+  if (!dense_.allFinite()) {
+    failure_ = "factorization failed: the iteration matrix has a non-finite entry (NaN or Inf)";
+    PetscFunctionReturn(0);
+  }
   PetscBLASInt bn = 0, info = 0;
   PetscCall(PetscBLASIntCast(n, &bn));
   const PetscBLASInt lda = std::max<PetscBLASInt>(bn, 1);  // LAPACK asks LDA ≥ max(1, N), also for N = 0
   PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bn, &bn, dense_.data(), &lda, pivots_.data(), &info));
   PetscCheck(info >= 0, PETSC_COMM_SELF, PETSC_ERR_LIB, "LAPACK getrf: argument %d is illegal", -static_cast<int>(info));
-  ++numeric_;
   if (determinant_) {
     // sign(det) = sign(det P) · Π sign(u_ii): the product itself over/underflows for n ~ 100.
     // pivots_[i] (1-based) is the row swapped with row i: each swap flips the sign.
@@ -147,11 +158,6 @@ PetscErrorCode LinearSolver::factor_dense(Mat A) {
   bool singular = info > 0;
   for (Eigen::Index i = 0; i < d.size(); ++i) singular = singular || !(std::fabs(d[i]) > 0.0) || !std::isfinite(d[i]);
   if (singular) failure_ = "factorization failed: dense LU found a zero pivot (numerically singular matrix)";
-  stats_ = FactorStatistics{};
-  stats_.dense = true;
-  stats_.entries = static_cast<double>(n) * static_cast<double>(n);
-  stats_.flops = 2.0 / 3.0 * static_cast<double>(n) * static_cast<double>(n) * static_cast<double>(n);
-  stats_.memory_max_mb = stats_.memory_sum_mb = 2.0 * stats_.entries * 8.0 / 1048576.0;
   PetscFunctionReturn(0);
 }
 
