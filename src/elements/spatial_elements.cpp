@@ -5,18 +5,46 @@
 namespace alphaflex {
 
 RigidBody3D::RigidBody3D(std::string name, int node, double mass, const Eigen::Matrix3d& inertia,
-                         const Eigen::Vector3d& gravity)
-    : Element(std::move(name), {node}), m_(mass), j_(inertia), g_(gravity) {}
+                         const Eigen::Vector3d& gravity, const Eigen::Vector3d& offset)
+    : Element(std::move(name), {node}), m_(mass), j_(inertia), g_(gravity), c_(offset) {}
+
+bool RigidBody3D::internal_force(const Eigen::VectorXd&, Eigen::VectorXd& r) const {
+  r = Eigen::VectorXd::Zero(6);
+  return true;
+}
 
 void RigidBody3D::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
   const Eigen::Vector3d W = s.v.segment<3>(3);
-  const Eigen::Vector3d JW = j_ * W;
-  out.r.segment<3>(0) += m_ * (s.qdd.segment<3>(0) - s.load_factor * g_);
-  out.r.segment<3>(3) += j_ * s.qdd.segment<3>(3) + W.cross(JW);
+  if (c_.isZero(0.0)) {  // about the centre of mass: Brüls, Cardona & Arnold (2012), eq. 56
+    const Eigen::Vector3d JW = j_ * W;
+    out.r.segment<3>(0) += m_ * (s.qdd.segment<3>(0) - s.load_factor * g_);
+    out.r.segment<3>(3) += j_ * s.qdd.segment<3>(3) + W.cross(JW);
+    if (tangent) {
+      out.M.block<3, 3>(0, 0) += m_ * Eigen::Matrix3d::Identity();
+      out.M.block<3, 3>(3, 3) += j_;
+      out.C.block<3, 3>(3, 3) += hat<double>(W) * j_ - hat<double>(JW);
+    }
+    return;
+  }
+  // About the node P, the centre at c in the node frame (the header's equations).
+  const Pose<double> p = pose_of(s.q.data());
+  const Eigen::Vector3d Wd = s.qdd.segment<3>(3);
+  const Eigen::Matrix3d Jp = j_ + m_ * (c_.squaredNorm() * Eigen::Matrix3d::Identity() - c_ * c_.transpose());
+  const Eigen::Vector3d JW = Jp * W, Wc = W.cross(c_);
+  const Eigen::Vector3d a = Wd.cross(c_) + W.cross(Wc);
+  const Eigen::Vector3d b = p.R.transpose() * (s.qdd.segment<3>(0) - s.load_factor * g_);  // ẍ − g, node axes
+  out.r.segment<3>(0) += m_ * (s.qdd.segment<3>(0) - s.load_factor * g_ + p.R * a);
+  out.r.segment<3>(3) += Jp * Wd + W.cross(JW) + m_ * c_.cross(b);
   if (tangent) {
+    const Eigen::Matrix3d C = hat<double>(c_);
     out.M.block<3, 3>(0, 0) += m_ * Eigen::Matrix3d::Identity();
-    out.M.block<3, 3>(3, 3) += j_;
-    out.C.block<3, 3>(3, 3) += hat<double>(W) * j_ - hat<double>(JW);
+    out.M.block<3, 3>(0, 3) -= m_ * p.R * C;
+    out.M.block<3, 3>(3, 0) += m_ * C * p.R.transpose();
+    out.M.block<3, 3>(3, 3) += Jp;
+    out.C.block<3, 3>(0, 3) -= m_ * p.R * (hat<double>(Wc) + hat<double>(W) * C);
+    out.C.block<3, 3>(3, 3) += hat<double>(W) * Jp - hat<double>(JW);
+    out.K.block<3, 3>(0, 3) -= m_ * p.R * hat<double>(a);
+    out.K.block<3, 3>(3, 3) += m_ * C * hat<double>(b);
   }
 }
 

@@ -468,6 +468,7 @@ Scene build(const YAML::Node& root, const std::string& label, const MeshLoader& 
     sb.gravity = rd.vec3(root, "gravity", "", Eigen::Vector3d::Zero());
   }
   const scene_detail::SceneTypes& types = rs.dimension == 2 ? scene_detail::planar_types() : scene_detail::spatial_types();
+  sb.root = root;
   scene_detail::read_mesh_and_blocks(rd, sb, root, types, rs.dimension);
   sb.blocks = {};  // the mesh itself is no longer needed: its groups are sb.mesh_groups
   read_bodies(rd, sb, root["bodies"], types, rs.dimension == 3);

@@ -94,6 +94,22 @@ class SceneBuilder {
   MeshBlocks blocks;                           ///< while `beams` and `shells` are read
   std::map<std::string, std::string> reduced_points;  ///< named mesh points without a node → their reduced block
   SuperelementCache* superelements = nullptr;  ///< where reduced blocks are kept (types/reduced_beams_3d.cpp); none: computed
+  YAML::Node root;                             ///< the scene's top level (a reduced body reads the bodies welded into it ahead)
+  /// A rigid body welded into a reduced body (`reduction.bodies`, types/reduced_beams_3d.cpp): its
+  /// mass is in the superelement, and the `fixed` joint that welds it becomes a ReducedInterfaceTie
+  /// of the body's node at its pose relative to the block node it is welded to.
+  struct Weld {
+    std::string body, block;
+    int frame = -1;
+    std::vector<int> amplitudes;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();     ///< X_a (m, frame axes)
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< R̄_a
+    Eigen::MatrixXd shape;                                   ///< Φ_a (6 × m)
+    Eigen::Vector3d offset_position = Eigen::Vector3d::Zero();     ///< the body's node in the block node's frame (m)
+    Eigen::Matrix3d offset_rotation = Eigen::Matrix3d::Identity();  ///< the body frame in the block node's frame
+  };
+  std::map<std::string, Weld> welds;                 ///< by the welding joint's name
+  std::map<std::string, std::string> welded_bodies;  ///< body → the reduced block it is part of
 
   /// The mesh group named by the section's key `key` (of dimension `dim`, if ≥ 0), all of whose
   /// nodes are model nodes; clear errors otherwise.

@@ -39,22 +39,31 @@ Pose<Along> moving(const Pose<double>& p, const Eigen::Vector3d& vx, const Eigen
 /// R(I + δθ'^) that `second` differentiates them at. The AD1 Jacobian of the equations it
 /// replaces cost ~25 % of a reduced slider-crank's run (docs/benchmarks/reduced.md);
 /// test_reduced_interface_tie.cpp compares the two.
+///
+/// With the offset (p, R_o) (the tied node welded at p, turned by R_o, in the block node's frame):
+/// x_A = x_f + R_f (X_a + u + C p), a_i = R_f C R_o e_i, so ∂d/∂δθ_f = R_f (X_a + u + C p)^,
+/// ∂d/∂ψ = R_a p̂ T(ψ) (δ(R_a p) = −R_a p̂ T δψ), and the rotation rows take oᵢ = R_o eᵢ for eᵢ
+/// (∂/∂δθ_f: (C oᵢ × R_fᵀbⱼ)ᵀ, ∂/∂ψ: (oᵢ × R_aᵀbⱼ)ᵀ T(ψ)); p = 0, R_o = I is the plain tie.
 template <class S>
 Eigen::Matrix<S, 6, kVars> jacobian(const ReducedInterfaceTie& tie, const Pose<S>& b, const Pose<S>& f, const Vec3<S>& u,
                                     const Vec3<S>& psi) {
   const Mat3<S> C = tie.rotation().template cast<S>() * exp_so3<S>(psi), Ra = f.R * C, Tpsi = tangent_so3<S>(psi);
+  const Vec3<S> p = tie.offset_position().template cast<S>();
+  const Mat3<S> Ro = tie.offset_rotation().template cast<S>();
+  const Mat3<S> CRo = C * Ro, RaRo = Ra * Ro;
   Eigen::Matrix<S, 6, kVars> J = Eigen::Matrix<S, 6, kVars>::Zero();
   J.template block<3, 3>(0, 0).setIdentity();
   J.template block<3, 3>(0, 6) = -Mat3<S>::Identity();
-  J.template block<3, 3>(0, 9) = f.R * hat<S>(Vec3<S>(tie.position().template cast<S>() + u));
+  J.template block<3, 3>(0, 9) = f.R * hat<S>(Vec3<S>(tie.position().template cast<S>() + u + C * p));
   J.template block<3, 3>(0, 12) = -f.R;
+  J.template block<3, 3>(0, 15) = Ra * hat<S>(p) * Tpsi;
   const int pair[3][2] = {{1, 2}, {2, 0}, {0, 1}};  // rows 3–5: a₂·b₃, a₃·b₁, a₁·b₂
   for (int r = 0; r < 3; ++r) {
     const int i = pair[r][0], j = pair[r][1];
-    const Vec3<S> ei = Vec3<S>::Unit(i), ej = Vec3<S>::Unit(j);
-    J.template block<1, 3>(3 + r, 3) = ej.cross(Vec3<S>(b.R.transpose() * Ra.col(i))).transpose();
-    J.template block<1, 3>(3 + r, 9) = Vec3<S>(C.col(i)).cross(Vec3<S>(f.R.transpose() * b.R.col(j))).transpose();
-    J.template block<1, 3>(3 + r, 15) = ei.cross(Vec3<S>(Ra.transpose() * b.R.col(j))).transpose() * Tpsi;
+    const Vec3<S> oi = Ro.col(i), ej = Vec3<S>::Unit(j);
+    J.template block<1, 3>(3 + r, 3) = ej.cross(Vec3<S>(b.R.transpose() * RaRo.col(i))).transpose();
+    J.template block<1, 3>(3 + r, 9) = Vec3<S>(CRo.col(i)).cross(Vec3<S>(f.R.transpose() * b.R.col(j))).transpose();
+    J.template block<1, 3>(3 + r, 15) = oi.cross(Vec3<S>(Ra.transpose() * b.R.col(j))).transpose() * Tpsi;
   }
   return J;
 }
@@ -95,7 +104,8 @@ Eigen::Matrix<double, kVars, kVars> second(const ReducedInterfaceTie& tie, const
 }  // namespace
 
 ReducedInterfaceTie::ReducedInterfaceTie(std::string name, int tied, int frame, const std::vector<int>& amplitudes,
-                                         const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation, Eigen::MatrixXd shape)
+                                         const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation, Eigen::MatrixXd shape,
+                                         const Eigen::Vector3d& offset_position, const Eigen::Matrix3d& offset_rotation)
     : Constraint(std::move(name), [&] {
         std::vector<int> n{tied, frame};
         n.insert(n.end(), amplitudes.begin(), amplitudes.end());
@@ -103,7 +113,9 @@ ReducedInterfaceTie::ReducedInterfaceTie(std::string name, int tied, int frame, 
       }()),
       position_(position),
       rotation_(rotation),
-      shape_(std::move(shape)) {
+      shape_(std::move(shape)),
+      offset_position_(offset_position),
+      offset_rotation_(offset_rotation) {
   if (shape_.rows() != 6 || shape_.cols() != static_cast<Eigen::Index>(amplitudes.size()))
     throw std::invalid_argument("reduced interface tie '" + this->name() + "': the shape must have 6 rows and one column per amplitude (" +
                                 std::to_string(amplitudes.size()) + ")");

@@ -12,19 +12,37 @@ namespace alphaflex {
 /// Newton–Euler equations of a rigid body about its centre of mass (the node):
 ///   r = [ m (ẍ − g) ;  J Ω̇ + Ω × J Ω ]   (Brüls, Cardona & Arnold 2012, eq. 56)
 /// with the inertia tensor J in the body frame. M = diag(m I, J), C = [0; Ω̂J − (JΩ)^], K = 0.
+///
+/// With an `offset` c (the centre of mass in the node frame; a body carried by a point that is not
+/// its centre of mass, e.g. a rigid body welded to a mesh node of a reduced flexible body,
+/// docs/theory/reduced_bodies.md "Rigid bodies inside a reduced body") the equations are those of
+/// the same body about the node P, from the virtual work of its inertia and weight at
+/// x_G = x + R c, δx_G = δx − R ĉ δθ:
+///   r = [ m (ẍ_G − g) ;  J_P Ω̇ + Ω × J_P Ω + m c × Rᵀ(ẍ − g) ],  ẍ_G = ẍ + R (Ω̇ × c + Ω × (Ω × c)),
+/// J_P = J + m (|c|² I − c cᵀ) (J about the centre, node axes), and
+///   M = [m I, −m R ĉ; m ĉ Rᵀ, J_P],  C = [0, −m R ((Ω × c)^ + Ω̂ ĉ); 0, Ω̂ J_P − (J_P Ω)^],
+///   K = [0, −m R â; 0, m ĉ (Rᵀ(ẍ − g))^],  a = Ω̇ × c + Ω × (Ω × c)
+/// (δx world, δθ node frame, R → R exp(δθ̂)). c = 0 is the equations above (their code path).
 class RigidBody3D final : public Element {
  public:
-  RigidBody3D(std::string name, int node, double mass, const Eigen::Matrix3d& inertia, const Eigen::Vector3d& gravity);
+  RigidBody3D(std::string name, int node, double mass, const Eigen::Matrix3d& inertia, const Eigen::Vector3d& gravity,
+              const Eigen::Vector3d& offset = Eigen::Vector3d::Zero());
   const char* type() const override { return "rigid_body"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<RigidBody3D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  /// No elastic force (zero): a reduction's internal-force differences skip the inertia terms.
+  bool internal_force(const Eigen::VectorXd& q, Eigen::VectorXd& r) const override;
   double mass() const { return m_; }
+  /// About the centre of mass, node axes.
   const Eigen::Matrix3d& inertia() const { return j_; }
+  /// The centre of mass in the node frame (m).
+  const Eigen::Vector3d& offset() const { return c_; }
 
  private:
   double m_;
   Eigen::Matrix3d j_;
   Eigen::Vector3d g_;
+  Eigen::Vector3d c_;
 };
 
 /// A force applied at a point of a frame (position `point` in the node frame) and a moment, each

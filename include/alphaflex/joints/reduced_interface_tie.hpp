@@ -27,6 +27,11 @@
 // Φ_ξ = Φ_z S, K_Φ = Pᵀ H P with S = Φ_a (6 × m) and P = diag(I₁₂, S). Φ_q, the geometric stiffness
 // ∂(Φ_qᵀλ)/∂δ' and the acceleration term are exact; they are checked against finite differences.
 //
+// With an offset (p, R_o) — a rigid body welded to the block node a, its own node B at the pose
+// (x_a + R_a p, R_a R_o) it had relative to a at t = 0 (docs/theory/reduced_bodies.md, "Rigid
+// bodies inside a reduced body") — marker A is that pose: the same 6 equations with x_a + R_a p and
+// a_i = R_a R_o e_i; the Jacobian gains ∂(R_a p)/∂(δθ_f, ψ) and R_o's columns in place of e_i.
+//
 // Nodes, in order: B, the frame node, then the m scalar amplitude nodes (the local unknowns
 // δx_B, δθ_B, δx_f, δθ_f, ξ). The joint sees plain data only (X_a, R̄_a, Φ_a), never a model.
 // Method `rigid` is the same tie with m = 0.
@@ -45,8 +50,12 @@ class ReducedInterfaceTie final : public Constraint {
   /// nodes (ξ); `position` X_a (m, frame axes), `rotation` R̄_a (the block node's frame in the
   /// floating frame), `shape` Φ_a (6 × m: δx in the frame's axes, then δθ in the node frame).
   /// Throws std::invalid_argument if the shape does not have 6 rows and one column per amplitude.
+  /// `offset_position` p (m) and `offset_rotation` R_o: B's pose in the block node's frame (zero
+  /// and identity: B is held at the block node itself).
   ReducedInterfaceTie(std::string name, int tied, int frame, const std::vector<int>& amplitudes, const Eigen::Vector3d& position,
-                      const Eigen::Matrix3d& rotation, Eigen::MatrixXd shape);
+                      const Eigen::Matrix3d& rotation, Eigen::MatrixXd shape,
+                      const Eigen::Vector3d& offset_position = Eigen::Vector3d::Zero(),
+                      const Eigen::Matrix3d& offset_rotation = Eigen::Matrix3d::Identity());
 
   const char* type() const override { return "reduced_interface_tie"; }
   std::unique_ptr<Constraint> clone() const override { return std::make_unique<ReducedInterfaceTie>(*this); }
@@ -57,6 +66,9 @@ class ReducedInterfaceTie final : public Constraint {
   /// X_a (m, frame axes) and R̄_a: the tied point's pose in the floating frame at ξ = 0.
   const Eigen::Vector3d& position() const { return position_; }
   const Eigen::Matrix3d& rotation() const { return rotation_; }
+  /// p (m, block node frame) and R_o: the tied node's pose relative to the block node.
+  const Eigen::Vector3d& offset_position() const { return offset_position_; }
+  const Eigen::Matrix3d& offset_rotation() const { return offset_rotation_; }
 
   void evaluate(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const override;
   void geometric_stiffness(const Eigen::VectorXd& q, double t, const Eigen::VectorXd& lambda,
@@ -68,8 +80,9 @@ class ReducedInterfaceTie final : public Constraint {
   /// The 6 equations at the poses of B and the frame and z = [Φᵗ_a ξ; Φʳ_a ξ], for any scalar.
   template <class S>
   void equations(const Pose<S>& b, const Pose<S>& f, const Vec3<S>& u, const Vec3<S>& psi, S* out) const {
-    const Vec3<S> xa = f.x + f.R * (Vec3<S>(position_.template cast<S>()) + u);
-    const Mat3<S> Ra = f.R * Mat3<S>(rotation_.template cast<S>() * exp_so3<S>(psi));
+    const Mat3<S> Rn = f.R * Mat3<S>(rotation_.template cast<S>() * exp_so3<S>(psi));  // the block node's R_a
+    const Vec3<S> xa = f.x + f.R * (Vec3<S>(position_.template cast<S>()) + u) + Rn * Vec3<S>(offset_position_.template cast<S>());
+    const Mat3<S> Ra = Rn * Mat3<S>(offset_rotation_.template cast<S>());
     const Vec3<S> d = b.x - xa;
     out[0] = d[0];
     out[1] = d[1];
@@ -86,6 +99,8 @@ class ReducedInterfaceTie final : public Constraint {
   Eigen::Vector3d position_;
   Eigen::Matrix3d rotation_;
   Eigen::MatrixXd shape_;
+  Eigen::Vector3d offset_position_;
+  Eigen::Matrix3d offset_rotation_;
 };
 
 }  // namespace alphaflex

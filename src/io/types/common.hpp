@@ -49,6 +49,20 @@ TwoPoints two_points(const Item& it, bool default_point2_coincident);
 Eigen::Matrix3d read_orientation(const Reader& rd, const YAML::Node& n, const std::string& key);
 /// The keys of a rotation given as {axis, angle} (registered with the spatial rigid body).
 const Schema& rotation_schema();
+/// A spatial `rigid_body` item's mass (kg), inertia (kg·m², body frame, about the centre of mass),
+/// pose at t = 0 and the names of its markers (types/rigid_body_3d.cpp).
+struct RigidBodyInput {
+  double mass = 0.0;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();
+  std::vector<std::string> markers;
+};
+/// Reads those keys of a `rigid_body` item checked against rigid_body_schema() (the same checks
+/// and messages as the body's own reader: a reduced body reads the bodies welded into it first).
+RigidBodyInput rigid_body_input(const Reader& rd, const Section& keys);
+/// The schema of the spatial `rigid_body` type.
+const Schema& rigid_body_schema();
 /// A spatial body or beam/shell node named by the item's key `key` (−1: the ground, if allowed).
 int spatial_node(const Item& it, const std::string& key, bool ground_ok);
 /// Initial pose of a node (the identity for the ground).

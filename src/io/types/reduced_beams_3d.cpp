@@ -13,6 +13,7 @@
 
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/elements/reduced_body.hpp"
+#include "alphaflex/elements/spatial_elements.hpp"
 #include "alphaflex/joints/reduced_interface_tie.hpp"
 #include "alphaflex/modal/superelement.hpp"
 #include "alphaflex/model/mesh_reconstruction.hpp"
@@ -39,6 +40,11 @@ const Schema& reduction_schema() {
       {"blocks", KeyType::Texts, "–", "– (none)", "further blocks of the same list (`beams` or `shells`) that are part of this body: each keeps "
                                                "its own group, section and orientation, has no `reduction` of its own, and the mesh points it shares "
                                                "with the others become inner points of the one reduced body (docs/input.md, \"Reduced beam blocks\")"},
+      {"bodies", KeyType::Texts, "–", "– (none)", "spatial `rigid_body` items of `bodies` that are part of this body: each is welded to "
+                                               "a named mesh point of its blocks by one `fixed` joint (body1/marker1 and body2 the point, or "
+                                               "the reverse); its mass and inertia join the block's mass matrix before the reduction (the "
+                                               "modes carry it), its node stays (markers, joints, sensors, shape) held at its pose "
+                                               "relative to that point by a tie that replaces the joint (docs/input.md, \"Reduced beam blocks\")"},
       {"geometric_stiffness", KeyType::Flag, "–", "off", "on: the elastic force gets the cubic and quartic terms of the block's own "
                                                         "nonlinear beam energy along the basis, ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ] (stress stiffening; "
                                                         "docs/theory/reduced_bodies.md); "
@@ -57,6 +63,92 @@ const Schema& reduction_schema() {
        Range::non_negative()}}};
   return s;
 }
+
+namespace {
+
+/// A rigid body of `reduction.bodies`: its item, mass properties and pose, the `fixed` joint that
+/// welds it and the mesh node it is welded to.
+struct BodyWeld {
+  std::string body, joint;
+  YAML::Node item;
+  int mesh = -1;
+  double mass = 0.0;
+  Eigen::Matrix3d inertia, orientation;
+  Eigen::Vector3d position;
+};
+
+/// The `name` of a list item (empty if it has none).
+std::string listed_name(const YAML::Node& n) { return n.IsMap() && n["name"] && n["name"].IsScalar() ? n["name"].Scalar() : ""; }
+
+/// The bodies `reduction.bodies` names (at `bn`, path `at`), read ahead of the scene's `bodies`
+/// (their own reader later makes their nodes without a mass, types/rigid_body_3d.cpp), each with
+/// the one `fixed` joint between it (or one of its markers) and a named mesh point of the blocks
+/// (`in_block`: the body's mesh nodes).
+std::vector<BodyWeld> read_body_welds(const Item& it, const Section& r, const YAML::Node& bn, const std::string& at,
+                                      const std::map<int, int>& in_block, const std::string& group) {
+  Reader& rd = it.rd;
+  const YAML::Node bodies = it.sb.root["bodies"], joints = it.sb.root["joints"];
+  std::vector<BodyWeld> out;
+  for (const std::string& name : r.texts("bodies")) {
+    for (const BodyWeld& w : out)
+      if (w.body == name) rd.fail(bn, at, "'" + name + "' is given twice");
+    if (it.sb.welded_bodies.count(name))
+      rd.fail(bn, at, "'" + name + "' is part of the reduced block '" + it.sb.welded_bodies.at(name) + "' already");
+    BodyWeld w;
+    w.body = name;
+    bool found = false;  // (a default YAML::Node counts as defined: a flag, not the node, says whether one was found)
+    if (bodies && bodies.IsSequence())
+      for (size_t i = 0; i < bodies.size() && !found; ++i)
+        if (listed_name(bodies[i]) == name) {
+          w.item = bodies[i];
+          found = true;
+        }
+    if (!found) rd.fail(bn, at, "no body named '" + name + "' in `bodies` (a reduced body takes spatial rigid bodies welded to its blocks)");
+    const YAML::Node type = w.item["type"];
+    if (!type || !type.IsScalar() || type.Scalar() != "rigid_body")
+      rd.fail(bn, at, "'" + name + "' is not a `rigid_body` (bodies[" + name + "]): only a rigid body can be welded into a reduced body");
+    const Section keys(rd, w.item, "bodies[" + name + "]", rigid_body_schema());
+    const RigidBodyInput in = rigid_body_input(rd, keys);
+    w.mass = in.mass;
+    w.inertia = in.inertia;
+    w.position = in.position;
+    w.orientation = in.orientation;
+    // The weld: a `fixed` joint with the body (or a marker of it) on one side and a named mesh
+    // point of the blocks on the other.
+    const auto is_body = [&](const YAML::Node& j, const char* body_key, const char* marker_key) {
+      if (j[body_key] && j[body_key].IsScalar() && j[body_key].Scalar() == name) return true;
+      return j[marker_key] && j[marker_key].IsScalar() &&
+             std::find(in.markers.begin(), in.markers.end(), j[marker_key].Scalar()) != in.markers.end();
+    };
+    const auto mesh_point = [&](const YAML::Node& j, const char* body_key) {
+      if (!j[body_key] || !j[body_key].IsScalar()) return -1;
+      for (const auto& [m, pn] : it.sb.blocks.point_name)
+        if (pn == j[body_key].Scalar() && in_block.count(m)) return m;
+      return -1;
+    };
+    std::string others;
+    if (joints && joints.IsSequence())
+      for (const YAML::Node& j : joints) {
+        if (!j.IsMap() || !j["type"] || !j["type"].IsScalar() || j["type"].Scalar() != "fixed") continue;
+        int m = -1;
+        if (is_body(j, "body1", "marker1")) m = mesh_point(j, "body2");
+        if (m < 0 && is_body(j, "body2", "marker2")) m = mesh_point(j, "body1");
+        if (m < 0) continue;
+        if (w.mesh >= 0)
+          rd.fail(bn, at, "'" + name + "' is welded to " + group + " by two `fixed` joints ('" + w.joint + "' and '" + listed_name(j) +
+                              "'): a rigid body inside a reduced body is welded at one point (weld the blocks at a shared point instead)");
+        w.mesh = m;
+        w.joint = listed_name(j);
+      }
+    if (w.mesh < 0)
+      rd.fail(bn, at, "'" + name + "' is welded to no point of " + group + ": give a `fixed` joint with body1 (or marker1) '" + name +
+                          "' and body2 a named mesh point of the block");
+    out.push_back(w);
+  }
+  return out;
+}
+
+}  // namespace
 
 void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
   const YAML::Node rn = it.keys.node("reduction");
@@ -149,7 +241,21 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
   const int frame = interface_node.at(m0);
   std::vector<int> others;
   for (size_t i = 1; i < mesh_interface.size(); ++i) others.push_back(in_block.at(mesh_interface[i]));
-  const BlockMatrices matrices = assemble_block(scratch, elements, /*dense=*/false);  // sparse only: O(n) memory
+  // The rigid bodies welded into the body: masses at their weld points in the scratch model.
+  const std::vector<BodyWeld> welds = r.has("bodies") ? read_body_welds(it, r, rn["bodies"], at + ".bodies", in_block, group) : std::vector<BodyWeld>{};
+  std::vector<int> with_masses = elements;
+  for (const BodyWeld& w : welds) {
+    const int node = in_block.at(w.mesh);
+    const Pose<double> p = pose_of(scratch.node(node).q0.data());
+    const BodyWeld& bw = w;
+    // The body's centre and inertia in the node frame; no gravity here (the reduced body's weight
+    // comes from its M0, which the mass joins).
+    const Eigen::Matrix3d Rrel = p.R.transpose() * bw.orientation;
+    scratch.add_element(std::make_unique<RigidBody3D>(bw.body, node, bw.mass, Eigen::Matrix3d(Rrel * bw.inertia * Rrel.transpose()),
+                                                      Eigen::Vector3d::Zero(), Eigen::Vector3d(p.R.transpose() * (bw.position - p.x))));
+    with_masses.push_back(static_cast<int>(scratch.elements().size()) - 1);
+  }
+  const BlockMatrices matrices = assemble_block(scratch, with_masses, /*dense=*/false);  // sparse only: O(n) memory
   ReducedBlock rb;
   try {
     const auto reduce = [&] {
@@ -170,6 +276,7 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
                 " derivatives " + std::to_string(derivatives);
     settings += "\ninterface";
     for (int m : mesh_interface) settings += " " + std::to_string(m);
+    for (const BodyWeld& w : welds) settings += "\nwith body " + w.body + " at mesh node " + std::to_string(w.mesh) + "\n" + YAML::Dump(w.item);
     rb = it.sb.superelements ? it.sb.superelements->find_or_reduce(it.name, SuperelementKey(settings, scratch, elements, matrices), reduce)
                              : reduce();
   } catch (const std::invalid_argument& e) {
@@ -215,6 +322,26 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
     const size_t a = static_cast<size_t>(slot - matrices.nodes.begin());
     it.model.add_constraint(std::make_unique<ReducedInterfaceTie>(it.name + ":tie:" + names[i], interface_node.at(m), frame, amplitudes,
                                                                   rb.positions[a], rb.rotations[a], rb.shapes[a]));
+  }
+  // Each welded body: its weld joint becomes a tie of the body's node when the joints are read
+  // (types/spatial_joints_3d.cpp), at its pose relative to the block node at t = 0.
+  for (const BodyWeld& w : welds) {
+    const int node = in_block.at(w.mesh);
+    const auto slot = std::lower_bound(matrices.nodes.begin(), matrices.nodes.end(), node);
+    const size_t a = static_cast<size_t>(slot - matrices.nodes.begin());
+    const Pose<double> p = pose_of(scratch.node(node).q0.data());
+    SceneBuilder::Weld weld;
+    weld.body = w.body;
+    weld.block = it.name;
+    weld.frame = frame;
+    weld.amplitudes = amplitudes;
+    weld.position = rb.positions[a];
+    weld.rotation = rb.rotations[a];
+    weld.shape = rb.shapes[a];
+    weld.offset_position = p.R.transpose() * (w.position - p.x);
+    weld.offset_rotation = p.R.transpose() * w.orientation;
+    it.sb.welds[w.joint] = weld;
+    it.sb.welded_bodies[w.body] = it.name;
   }
 }
 

@@ -38,11 +38,11 @@ const Schema& marker_schema() {
 void read_rigid_body_3d(const Item& it) {
   Reader& rd = it.rd;
   const Section& k = it.keys;
-  const double m = k.number("mass");
-  const Eigen::Matrix3d J = read_inertia(rd, k.node("inertia"), it.at("inertia"));
-  const Eigen::Vector3d x = k.vec3("position");
-  const Eigen::Matrix3d R = k.has("orientation") ? read_orientation(rd, k.node("orientation"), it.at("orientation"))
-                                                 : Eigen::Matrix3d::Identity();
+  const RigidBodyInput in = rigid_body_input(rd, k);
+  const double m = in.mass;
+  const Eigen::Matrix3d& J = in.inertia;
+  const Eigen::Vector3d& x = in.position;
+  const Eigen::Matrix3d& R = in.orientation;
   const Eigen::Vector3d v = k.vec3("velocity"), w = k.vec3("angular_velocity");  // w: world frame
   Node nd;
   nd.name = it.name;
@@ -52,7 +52,9 @@ void read_rigid_body_3d(const Item& it) {
   nd.v0.resize(6);
   nd.v0 << v, R.transpose() * w;  // Ω in the body frame
   const int id = it.model.add_node(nd);
-  it.model.add_element(std::make_unique<RigidBody3D>(it.name, id, m, J, it.sb.gravity));
+  // A body welded into a reduced body (`reduction.bodies`): its mass and inertia are in the
+  // superelement (types/reduced_beams_3d.cpp); its node is held by the weld's tie.
+  if (!it.sb.welded_bodies.count(it.name)) it.model.add_element(std::make_unique<RigidBody3D>(it.name, id, m, J, it.sb.gravity));
   read_body_shape(it, id);
   // Markers: named frames fixed to the body (position and orientation in the body frame), for
   // joints (marker1/marker2) and point sensors (marker).
@@ -77,8 +79,21 @@ void read_rigid_body_3d(const Item& it) {
 
 }  // namespace
 
-void register_rigid_body_3d(SceneTypes& t) {
-  t.bodies.add("rigid_body", type_schema("bodies.3d.rigid_body", "`rigid_body`: a frame on R³×SO(3)", {
+RigidBodyInput rigid_body_input(const Reader& rd, const Section& k) {
+  RigidBodyInput in;
+  in.mass = k.number("mass");
+  in.inertia = read_inertia(rd, k.node("inertia"), k.key_path("inertia"));
+  in.position = k.vec3("position");
+  in.orientation = k.has("orientation") ? read_orientation(rd, k.node("orientation"), k.key_path("orientation"))
+                                        : Eigen::Matrix3d::Identity();
+  if (const YAML::Node ml = k.node("markers"); ml && ml.IsSequence())
+    for (const YAML::Node& mk : ml)
+      if (mk.IsMap() && mk["name"] && mk["name"].IsScalar()) in.markers.push_back(mk["name"].Scalar());
+  return in;
+}
+
+const Schema& rigid_body_schema() {
+  static const Schema s = type_schema("bodies.3d.rigid_body", "`rigid_body`: a frame on R³×SO(3)", {
       {"mass", KeyType::Number, "kg", kRequired, "positive", Range::positive(), "mass (kg); a zero mass makes the mass matrix singular"},
       {"inertia", KeyType::List, "kg·m²", kRequired, "about the centre of mass in the body frame; symmetric positive definite with I1 + I2 ≥ I3",
        {}, "", "[Ixx, Iyy, Izz] or 3×3 list of rows"},
@@ -87,8 +102,12 @@ void register_rigid_body_3d(SceneTypes& t) {
       {"velocity", KeyType::Vec3, "m/s", "[0, 0, 0]", "velocity of the centre of mass at t = 0"},
       {"angular_velocity", KeyType::Vec3, "rad/s", "[0, 0, 0]", "world components at t = 0"},
       {"markers", KeyType::List, "m, rad", "none", "frames fixed to the body, `{name, position, orientation}` in the body frame"},
-      shape_key()}),
-              read_rigid_body_3d);
+      shape_key()});
+  return s;
+}
+
+void register_rigid_body_3d(SceneTypes& t) {
+  t.bodies.add("rigid_body", rigid_body_schema(), read_rigid_body_3d);
   t.parts.push_back(&marker_schema());
   t.parts.push_back(&rotation_schema());
   t.parts.push_back(&shape_schema());

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
+#include "alphaflex/joints/reduced_interface_tie.hpp"
 #include "alphaflex/joints/spatial_joints.hpp"
 #include "common.hpp"
 
@@ -93,6 +94,14 @@ void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
   const Section& k = it.keys;
   const std::string& name = it.name;
   const bool has_axis = kind.needs_axis;
+  // The weld of a rigid body into a reduced body (`reduction.bodies`, types/reduced_beams_3d.cpp):
+  // the body's node held at its pose relative to the block node it is welded to.
+  if (const auto weld = sb.welds.find(name); weld != sb.welds.end()) {
+    const SceneBuilder::Weld& w = weld->second;
+    model.add_constraint(std::make_unique<ReducedInterfaceTie>(name, model.find_node(w.body), w.frame, w.amplitudes, w.position,
+                                                               w.rotation, w.shape, w.offset_position, w.offset_rotation));
+    return;
+  }
   // A marker (a named frame of a body) stands for the body, the location and the joint frame.
   auto marker_of = [&](const char* key) -> const NamedMarker* {
     if (!k.has(key)) return nullptr;
