@@ -65,6 +65,13 @@ std::vector<std::string> rung_overrides(const ReductionLadder& ladder, const std
     YAML::Node names(YAML::NodeType::Sequence);
     for (const auto& n : ladder.interfaces[b]) names.push_back(n);
     r["interface"] = names;
+    // The bodies welded into the block are part of every reduced rung, the rigid one too (its rigid
+    // mass properties carry them).
+    if (b < ladder.bodies.size() && !ladder.bodies[b].empty()) {
+      YAML::Node welded(YAML::NodeType::Sequence);
+      for (const auto& n : ladder.bodies[b]) welded.push_back(n);
+      r["bodies"] = welded;
+    }
     // The rigid rung keeps no elastic amplitude: the reader refuses both keys on it.
     if (step != "rigid" && ladder.geometric_stiffness) r["geometric_stiffness"] = "on";
     if (step != "rigid" && ladder.static_modes != "none") r["static_modes"] = ladder.static_modes;

@@ -95,7 +95,8 @@ const Schema kReduce{"study.reduce", {
     {"ladder", KeyType::List, "–", "`[rigid, 2, 4, 8, 16, full]`", "the rungs, lightest first: `rigid` (each block one rigid body), a number of modes k (1 to 10000), `full` (the blocks' full nonlinear mesh, the reference; required)", {}, "", "list"}}};
 const Schema kReduceBlock{"study.reduce.blocks", {
     {"name", KeyType::Text, "–", kRequired, "a beam or shell block of the scene"},
-    {"interface", KeyType::Texts, "–", "`study.reduce.interface`", "this block's interface points", {}, "", "list of names"}}};
+    {"interface", KeyType::Texts, "–", "`study.reduce.interface`", "this block's interface points", {}, "", "list of names"},
+    {"bodies", KeyType::Texts, "–", "none", "rigid bodies of the scene welded to this block that every reduced rung takes into it (`reduction.bodies`: each welded by one `fixed` joint to a named point of the block)", {}, "", "list of names"}}};
 const Schema kLoad{"study.load", {
     {"keys", KeyType::Texts, "–", kRequired, "the scene's numbers to scale, as `--set` names them (`load.factor`, `forces.0.value`): each a number, an expression of the scene's `parameters` or a list of them (a vector)", {}, "", "list of key paths"},
     {"scale", KeyType::Numbers, "–", kRequired, "the load scales, increasing: every rung runs with each key multiplied by each scale", Range::positive(), "load scale", "number or list"}}};
@@ -181,12 +182,13 @@ void read_ladder(const Reader& rd, const YAML::Node& r, const YAML::Node& scene_
   for (size_t i = 0; i < blocks.size(); ++i) {
     const YAML::Node b = blocks[i];
     std::string key = "study.reduce.blocks[" + std::to_string(i) + "]", name;
-    std::vector<std::string> interface = common;
+    std::vector<std::string> interface = common, welded;
     bool own = false;
     if (b.IsMap()) {
       const Section block(rd, b, key, kReduceBlock);
       name = nonempty_text(rd, block.node("name"), key + ".name");
       if (block.has("interface")) interface = block.texts("interface"), own = true;
+      if (block.has("bodies")) welded = block.texts("bodies");
     } else {
       name = nonempty_text(rd, b, key);
     }
@@ -206,6 +208,7 @@ void read_ladder(const Reader& rd, const YAML::Node& r, const YAML::Node& scene_
     l.block_paths.push_back(path);
     l.block_names.push_back(name);
     l.interfaces.push_back(interface);
+    l.bodies.push_back(welded);
   }
   std::vector<YAML::Node> at;
   if (const YAML::Node steps = reduce.node("ladder")) {

@@ -304,6 +304,13 @@ TEST(StudyFidelityLadder, LadderExpandsIntoPatchesOfTheOneScene) {
   EXPECT_EQ(rung_overrides(two, "2"),
             (std::vector<std::string>{"beams.0.reduction={method: herting, modes: 2, interface: [A]}",
                                       "shells.1.reduction={method: herting, modes: 2, interface: [P, Q]}"}));
+  // Bodies welded into a block (`reduction.bodies`): in every reduced rung of that block, rigid too.
+  two.bodies = {{"payload", "hub"}, {}};
+  EXPECT_EQ(rung_overrides(two, "rigid"),
+            (std::vector<std::string>{"beams.0.reduction={method: rigid, interface: [A], bodies: [payload, hub]}",
+                                      "shells.1.reduction={method: rigid, interface: [P, Q]}"}));
+  EXPECT_EQ(rung_overrides(two, "2").front(), "beams.0.reduction={method: herting, modes: 2, interface: [A], bodies: [payload, hub]}");
+  EXPECT_TRUE(rung_overrides(two, "full").empty());
   YAML::Node both = YAML::Load("{beams: [{name: a}], shells: [{name: b}, {name: c}]}");
   EXPECT_EQ(find_block(both, "c"), "shells.1");
   EXPECT_EQ(find_block(both, "a"), "beams.0");
