@@ -60,7 +60,8 @@ ResultsParts::ResultsParts(const Subdomain& sub, const std::vector<ElementGrid>&
                          9 * layout_.shapes.points() +  // shape points, displacement, velocity
                          19 * layout_.reduced.points() + 2 * layout_.reduced.modes();  // rebuilt meshes, modal coordinates
   size_t sets = 20;
-  for (const CellField& f : layout_.reduced.fields) values += layout_.reduced.cells() * static_cast<unsigned long long>(f.components);
+  for (const ReducedGrid& g : layout_.reduced.grids)
+    for (const CellField& f : g.fields) values += g.cells() * static_cast<unsigned long long>(f.components);
   for (size_t k = 0; k < grids.size(); ++k)
     for (const CellField& f : grids[k].fields) {
       values += cells_[k].total * static_cast<unsigned long long>(f.components);

@@ -116,12 +116,13 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
     }
     x << "  </Grid>\n";
   }
-  if (!layout_.reduced.empty()) {
-    // The reduced bodies' meshes rebuilt from their frames and modes (results_reduced.hpp), drawn
-    // like a beam block: points, node data, the elements' results as cell data; each body's modal
-    // coordinates as grid data (ParaView: field data `modal_coordinates_NAME`), a hyperslab of the
-    // step's modal_coordinates (start, stride, count of the 1-D dataset of Σm values).
-    const ReducedLayout& r = layout_.reduced;
+  // The reduced bodies' meshes rebuilt from their frames and modes (results_reduced.hpp), one grid
+  // per kind, drawn like a beam or shell block: points, node data, the elements' results as cell
+  // data; each body's modal coordinates as grid data of its kind's grid (ParaView: field data
+  // `modal_coordinates_NAME`), a hyperslab of the step's modal_coordinates (start, stride, count of
+  // the 1-D dataset of Σm values over all bodies).
+  const ReducedLayout& rl = layout_.reduced;
+  for (const ReducedGrid& r : rl.grids) {
     const std::string name = r.grid();
     x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
     for (size_t s = 0; s < steps.size(); ++s) {
@@ -149,13 +150,13 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
         item(s, r.dataset(f.name), r.cells(), f.components);
         x << "    </Attribute>\n";
       }
-      for (size_t b = 0; b < r.elements.size(); ++b) {
-        const unsigned long long first = r.modal_offset[b], m = r.modal_offset[b + 1] - first;
+      for (size_t b : r.bodies) {
+        const unsigned long long first = rl.modal_offset[b], m = rl.modal_offset[b + 1] - first;
         if (m == 0) continue;
-        x << "    <Attribute Name=\"modal_coordinates_" << r.names[b] << "\" AttributeType=\"Scalar\" Center=\"Grid\">\n"
+        x << "    <Attribute Name=\"modal_coordinates_" << rl.names[b] << "\" AttributeType=\"Scalar\" Center=\"Grid\">\n"
           << "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << m << "\" Type=\"HyperSlab\">\n"
           << "      <DataItem Dimensions=\"3 1\" Format=\"XML\">" << first << " 1 " << m << "</DataItem>\n"
-          << "      <DataItem Dimensions=\"" << r.modes() << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << in_part(s)
+          << "      <DataItem Dimensions=\"" << rl.modes() << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << in_part(s)
           << ":/" << steps[s].group << "/modal_coordinates</DataItem>\n     </DataItem>\n    </Attribute>\n";
       }
       x << "   </Grid>\n";

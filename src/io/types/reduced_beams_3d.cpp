@@ -304,14 +304,6 @@ void read_reduced_block_3d(const Item& it, const BlockPartOf& part_of) {
     if (it.model.find_node(c.name) >= 0) it.rd.fail(it.node, it.path, "node '" + c.name + "' exists already");
     amplitudes.push_back(it.model.add_node(c));
   }
-  // The results draw all reduced blocks as one grid of one kind (io/results_reduced.cpp: the first
-  // body's structure and fields): beams and shells reduced in one scene would lose the second kind's.
-  const char* structure = elements.empty() ? nullptr : scratch.elements()[static_cast<size_t>(elements.front())]->structure();
-  const std::string kind = structure ? structure : "";
-  for (const auto& e : it.model.elements())
-    if (const MeshReconstruction* other = reconstruction_of(*e); other && other->structure() && kind != other->structure())
-      it.rd.fail(rn, at, "block '" + it.name + "': a scene's reduced blocks are all beams or all shells (the reduced block '" + e->name() +
-                              "' is a " + other->structure() + " block; the results hold one kind of reduced mesh)");
   auto body = std::make_unique<ReducedBody>(it.name, frame, amplitudes, rb.matrices, it.sb.gravity);
   body->attach_reconstruction(reduced_block_mesh(it, scratch, elements, rb, in_block, derivatives > 0));  // the full mesh for output and sensors
   it.model.add_element(std::move(body));
