@@ -112,6 +112,16 @@ YAML::Node apply_override(YAML::Node root, const std::string& assignment, const 
     if (cur.IsScalar())
       throw InputError(head + "'" + walked + "' is a value, not a map: it has no key '" + parts.back() + "'");
     const YAML::Node v = YAML::Load(value);
+    // `key=~` (or null): the key is removed, as if the scene had never given it (its default, or
+    // for a block's `reduction` the full mesh). A list entry cannot be removed (the indices of the
+    // others would move under the later assignments).
+    if (v.IsNull() && !value.empty()) {
+      if (cur.IsSequence()) throw InputError(head + "a list entry cannot be removed (only a key of a map)");
+      if (!cur.IsMap() || !cur[parts.back()])
+        throw InputError(head + "there is no key '" + parts.back() + "'" + (walked.empty() ? "" : " in '" + walked + "'") + " to remove");
+      cur.remove(parts.back());
+      return v;
+    }
     if (cur.IsSequence()) cur[index(cur, parts.back())] = v;
     else cur[parts.back()] = v;
     return v;

@@ -57,7 +57,11 @@ std::string rung_label(const std::string& step) {
 
 std::vector<std::string> rung_overrides(const ReductionLadder& ladder, const std::string& step) {
   std::vector<std::string> o;
-  if (step == "full") return o;  // no `reduction` key: the block's full nonlinear mesh
+  if (step == "full") {  // no `reduction` key: the block's full nonlinear mesh
+    for (size_t b = 0; b < ladder.block_paths.size(); ++b)
+      if (b < ladder.reduced_in_scene.size() && ladder.reduced_in_scene[b]) o.push_back(ladder.block_paths[b] + ".reduction=~");
+    return o;
+  }
   for (size_t b = 0; b < ladder.block_paths.size(); ++b) {
     YAML::Node r(YAML::NodeType::Map);
     r["method"] = step == "rigid" ? std::string("rigid") : ladder.method;

@@ -202,9 +202,10 @@ void read_ladder(const Reader& rd, const YAML::Node& r, const YAML::Node& scene_
     if (std::count(l.block_names.begin(), l.block_names.end(), name)) rd.fail(b, key, "block '" + name + "' is named twice");
     if (!own && !reduce.has("interface"))
       rd.fail(b, key, "no interface for block '" + name + "': give study.reduce.interface or {name: " + name + ", interface: [...]}");
+    // A block the scene reduces already: the ladder's rungs replace its `reduction`, and the full
+    // rung removes it (`PATH.reduction=~`): the reference is always the block's full mesh.
     const std::string list = path.substr(0, path.find('.'));
-    if (scene_root[list][std::stoul(path.substr(path.find('.') + 1))]["reduction"])
-      rd.fail(b, key, "the scene's block " + list + "[" + name + "] has a `reduction` already; the ladder's reference is its full mesh: remove it from the scene");
+    l.reduced_in_scene.push_back(static_cast<bool>(scene_root[list][std::stoul(path.substr(path.find('.') + 1))]["reduction"]));
     l.block_paths.push_back(path);
     l.block_names.push_back(name);
     l.interfaces.push_back(interface);

@@ -311,6 +311,9 @@ TEST(StudyFidelityLadder, LadderExpandsIntoPatchesOfTheOneScene) {
                                       "shells.1.reduction={method: rigid, interface: [P, Q]}"}));
   EXPECT_EQ(rung_overrides(two, "2").front(), "beams.0.reduction={method: herting, modes: 2, interface: [A], bodies: [payload, hub]}");
   EXPECT_TRUE(rung_overrides(two, "full").empty());
+  // A block the scene reduces itself: the full rung removes its `reduction` (the reference is the full mesh).
+  two.reduced_in_scene = {true, false};
+  EXPECT_EQ(rung_overrides(two, "full"), std::vector<std::string>{"beams.0.reduction=~"});
   YAML::Node both = YAML::Load("{beams: [{name: a}], shells: [{name: b}, {name: c}]}");
   EXPECT_EQ(find_block(both, "c"), "shells.1");
   EXPECT_EQ(find_block(both, "a"), "beams.0");

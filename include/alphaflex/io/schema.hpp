@@ -99,8 +99,9 @@ struct Schema {
 using MeshLoader = std::function<MeshData(const std::string& path, const MeshOptions&, const std::string& context)>;
 
 /// Applies "a.b.2.c=value" to the tree `root` (maps created on the way, list items by index) and
-/// returns the node it put there. `option` ("--set", "--study-set") and `label` (the file) head
-/// every message. One function for the scene's --set and the study's --study-set.
+/// returns the node it put there; "a.b=~" (null) removes the key b instead (an error if there is
+/// none, or if it names a list entry). `option` ("--set", "--study-set") and `label` (the file)
+/// head every message. One function for the scene's --set and the study's --study-set.
 YAML::Node apply_override(YAML::Node root, const std::string& assignment, const std::string& option,
                           const std::string& label);
 

@@ -21,6 +21,8 @@ struct ReductionLadder {
   std::vector<std::vector<std::string>> interfaces;
   /// Rigid bodies welded into each block (`reduction.bodies`), in block order; empty: none (not written).
   std::vector<std::vector<std::string>> bodies;
+  /// Whether the scene itself gives each block a `reduction` (the full rung then removes it); empty: none does.
+  std::vector<bool> reduced_in_scene;
   std::string method = "craig_bampton";  ///< craig_bampton | herting: the reduced rungs' method
   /// The reduced rungs' `reduction.geometric_stiffness` (stress stiffening: ½ T[ξ,ξ] + ⅙ Q[ξ,ξ,ξ],
   /// docs/theory/reduced_bodies.md "Geometric stiffness"); never given to the rigid rung.
