@@ -60,6 +60,8 @@ def main():
     expect(last["reduced_shell_points"].shape == (25, 3), f"reduced_shell_points: the sign's 25 points ({last['reduced_shell_points'].shape})")
     topo = f1["topology"]
     expect(topo["reduced_beam_connectivity"][()].size == 20, "10 line cells of the post")
+    # Mixed topology: a type number and 4 point rows per quadrilateral.
+    expect(topo["reduced_shell_connectivity"][()].size == 16 * 5, f"16 quadrilaterals of the sign ({topo['reduced_shell_connectivity'][()].size} entries)")
     expect(list(topo["modal_offsets"][()]) == [0, 14, 28], f"modal_offsets [0, 14, 28] ({list(topo['modal_offsets'][()])})")
     names = topo.attrs["modal_bodies"]
     names = names.decode() if isinstance(names, bytes) else str(names)

@@ -197,7 +197,8 @@ TEST(ReducedWeldedBody, ThePayloadsMassJoinsTheLinkAndItsWeldIsATie) {
   const std::vector<std::string> payload = {
       "bodies.0.position=[1.05, 0.02, -0.03]", "bodies.0.mass=1.3", "bodies.0.inertia=[2.0e-3, 3.0e-3, 4.0e-3]",
       "bodies.0.orientation=[0.3, -0.5, 0.8]",
-      // The grip: 5 cm behind the centre along the body's x axis; marker1 welds it to the tip.
+      // The grip (marker1 of the weld) at the body's centre: the weld freezes the body's pose
+      // relative to the tip wherever the marker is.
       "bodies.0.markers=[{name: grip, position: [0, 0, 0]}]"};
   const Scene with = read_scene(scene, payload);
   std::vector<std::string> alone = payload;

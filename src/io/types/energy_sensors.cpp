@@ -43,6 +43,10 @@ void read_energy_of(const Item& it, Sensor& sn, int component) {
     if (first < 0) first = static_cast<int>(e);
     end = static_cast<int>(e) + 1;
   }
+  // A body welded into a reduced body has no element of its own: its energy is the reduced body's.
+  if (const auto w = it.sb.welded_bodies.find(of); w != it.sb.welded_bodies.end())
+    it.rd.fail(it.keys.node("of"), it.at("of"), "'" + of + "' is welded into the reduced block '" + w->second +
+                                                   "': its kinetic and potential energy are part of that body's (of: " + w->second + ")");
   if (first < 0)
     it.rd.fail(it.keys.node("of"), it.at("of"), "no block, body or force element named '" + of +
                                                    "' (give the name of a `beams` or `shells` block, a rigid body, a force element or load of `forces`, or `model`)");

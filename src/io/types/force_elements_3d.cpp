@@ -337,6 +337,10 @@ void read_energy(const Item& it, Sensor& sn) {
   const auto& elements = it.model.elements();
   for (size_t e = 0; e < elements.size(); ++e)
     if (elements[e]->name() == name) sn.element = static_cast<int>(e);
+  // A body welded into a reduced body has no element of its own: its energy is the reduced body's.
+  if (const auto w = it.sb.welded_bodies.find(name); w != it.sb.welded_bodies.end())
+    it.rd.fail(it.keys.node("element"), it.at("element"), "'" + name + "' is welded into the reduced block '" + w->second +
+                                                   "': its kinetic and potential energy are part of that body's (element: " + w->second + ")");
   if (sn.element < 0)
     it.rd.fail(it.keys.node("element"), it.at("element"), "no element named '" + name +
                                                             "' (a rigid body's name, a force element's, or BLOCK[k] for element k of a beam or shell block)");

@@ -8,6 +8,12 @@ namespace {
 void read_joint_reaction(const Item& it, Sensor& sn, bool planar) {
   sn.kind = Sensor::Kind::JointReaction;
   sn.constraint = sensor_joint(it);
+  // A weld into a reduced body is a tie of the body's massless node: the load it carries is inside
+  // the reduced body, and the tie's multipliers see only the loads applied to the body's node.
+  if (const auto w = it.sb.welds.find(it.keys.text("joint")); w != it.sb.welds.end())
+    it.rd.fail(it.node["joint"], it.at("joint"), "'" + w->first + "' welds '" + w->second.body + "' into the reduced block '" +
+                                                     w->second.block + "': its reaction is inside the reduced body and is not available (the body's "
+                                                     "other joints' reactions are; the full mesh, --set BLOCK.reduction=~, has this one)");
   sn.component = it.keys.choice("component");
   if (planar && sn.component == 2) sn.component = 5;  // mz: the sixth component of a reaction
 }

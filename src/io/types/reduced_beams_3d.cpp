@@ -88,6 +88,8 @@ std::vector<BodyWeld> read_body_welds(const Item& it, const Section& r, const YA
                                       const std::map<int, int>& in_block, const std::string& group) {
   Reader& rd = it.rd;
   const YAML::Node bodies = it.sb.root["bodies"], joints = it.sb.root["joints"];
+  if (bodies && !bodies.IsSequence()) rd.fail(bodies, "bodies", "expected a list of bodies");
+  if (joints && !joints.IsSequence()) rd.fail(joints, "joints", "expected a list of joints");
   std::vector<BodyWeld> out;
   for (const std::string& name : r.texts("bodies")) {
     for (const BodyWeld& w : out)
@@ -109,6 +111,12 @@ std::vector<BodyWeld> read_body_welds(const Item& it, const Section& r, const YA
       rd.fail(bn, at, "'" + name + "' is not a `rigid_body` (bodies[" + name + "]): only a rigid body can be welded into a reduced body");
     const Section keys(rd, w.item, "bodies[" + name + "]", rigid_body_schema());
     const RigidBodyInput in = rigid_body_input(rd, keys);
+    // Its mass moves with the blocks and its node is held by the tie: a velocity of its own would
+    // be dropped (the full mesh would project it onto the weld instead).
+    for (const char* v : {"velocity", "angular_velocity"})
+      if (keys.has(v) && keys.vec3(v).squaredNorm() > 0.0)
+        rd.fail(keys.node(v), keys.key_path(v), "'" + name + "' is welded into the reduced block '" + it.name +
+                                                    "': it moves with its blocks from their initial velocity; leave its own out");
     w.mass = in.mass;
     w.inertia = in.inertia;
     w.position = in.position;
@@ -130,6 +138,7 @@ std::vector<BodyWeld> read_body_welds(const Item& it, const Section& r, const YA
     if (joints && joints.IsSequence())
       for (const YAML::Node& j : joints) {
         if (!j.IsMap() || !j["type"] || !j["type"].IsScalar() || j["type"].Scalar() != "fixed") continue;
+        if (j["group"]) continue;  // a joint per node of a group: not a weld at one point
         int m = -1;
         if (is_body(j, "body1", "marker1")) m = mesh_point(j, "body2");
         if (m < 0 && is_body(j, "body2", "marker2")) m = mesh_point(j, "body1");
@@ -142,7 +151,7 @@ std::vector<BodyWeld> read_body_welds(const Item& it, const Section& r, const YA
       }
     if (w.mesh < 0)
       rd.fail(bn, at, "'" + name + "' is welded to no point of " + group + ": give a `fixed` joint with body1 (or marker1) '" + name +
-                          "' and body2 a named mesh point of the block");
+                          "' and body2 a named mesh point of the block (not a `group` joint)");
     out.push_back(w);
   }
   return out;

@@ -94,14 +94,6 @@ void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
   const Section& k = it.keys;
   const std::string& name = it.name;
   const bool has_axis = kind.needs_axis;
-  // The weld of a rigid body into a reduced body (`reduction.bodies`, types/reduced_beams_3d.cpp):
-  // the body's node held at its pose relative to the block node it is welded to.
-  if (const auto weld = sb.welds.find(name); weld != sb.welds.end()) {
-    const SceneBuilder::Weld& w = weld->second;
-    model.add_constraint(std::make_unique<ReducedInterfaceTie>(name, model.find_node(w.body), w.frame, w.amplitudes, w.position,
-                                                               w.rotation, w.shape, w.offset_position, w.offset_rotation));
-    return;
-  }
   // A marker (a named frame of a body) stands for the body, the location and the joint frame.
   auto marker_of = [&](const char* key) -> const NamedMarker* {
     if (!k.has(key)) return nullptr;
@@ -127,6 +119,15 @@ void read_spatial_joint(const Item& it, const SpatialJointKind& kind) {
   if (k.has("group2") && !group) rd.fail(k.node("group2"), it.at("group2"), "group2 pairs the nodes of `group` with coincident ones: give group too");
   if (k.has("group2") && (k.has("body2") || mk2))
     rd.fail(k.node("group2"), it.at("group2"), "give either group2 (the coincident node of another mesh group) or body2/marker2");
+  // The weld of a rigid body into a reduced body (`reduction.bodies`, types/reduced_beams_3d.cpp),
+  // after the checks of its keys (the full mesh runs the same joint):
+  // the body's node held at its pose relative to the block node it is welded to.
+  if (const auto weld = sb.welds.find(name); weld != sb.welds.end()) {
+    const SceneBuilder::Weld& w = weld->second;
+    model.add_constraint(std::make_unique<ReducedInterfaceTie>(name, model.find_node(w.body), w.frame, w.amplitudes, w.position,
+                                                               w.rotation, w.shape, w.offset_position, w.offset_rotation));
+    return;
+  }
   const int fixed_b2 = mk2 ? mk2->node : (k.has("body2") ? spatial_node(it, "body2", true) : -1);
   // (body1, body2) of each joint: one joint, or one per node of `group` (with body2, or with the
   // node of `group2` at the same place: a hinge between two meshed parts that cross or touch).
