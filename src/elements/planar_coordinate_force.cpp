@@ -12,7 +12,7 @@ using ad::AD2;
 
 /// ε of the geometry g at the planar coordinates (x, y, θ) of A and B (the ground: zeros).
 template <class S>
-void coordinate_values(const PlanarCoordinateForce::Geometry& g, const S* a, const S* b, std::vector<S>& e) {
+void planar_coordinate_values(const PlanarCoordinateForce::Geometry& g, const S* a, const S* b, std::vector<S>& e) {
   using std::cos;
   using std::sin;
   auto point = [](const S* q, const Eigen::Vector2d& s, S& px, S& py) {  // x + R(θ) s
@@ -66,7 +66,7 @@ void PlanarCoordinateForce::coordinates(const Eigen::VectorXd& q, Eigen::VectorX
   const AD2* a = g_.body_a ? x.data() : ground.data();
   const AD2* b = g_.body_b ? x.data() + (g_.body_a ? 3 : 0) : ground.data();
   std::vector<AD2> e;
-  coordinate_values<AD2>(g_, a, b, e);
+  planar_coordinate_values<AD2>(g_, a, b, e);
   const int m = static_cast<int>(e.size());
   eps.resize(m);
   J.resize(m, n);

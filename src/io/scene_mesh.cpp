@@ -14,7 +14,7 @@
 namespace alphaflex::scene_detail {
 namespace {
 
-const Schema kMesh{"mesh", {
+const Schema kMeshSchema{"mesh", {
     {"file", KeyType::Text, "–", kRequired, "a .geo or .msh, relative to the scene file's directory"},
     {"elements", KeyType::Integer, "–", "the .geo's own", "every curve of a .geo meshed with this many equal elements (not with `element_size`; not for .msh)", Range::closed(1, 10000000)},
     {"element_size", KeyType::Number, "m", "the .geo's own", "largest element length of a .geo", Range::positive(), "element size (m)"},
@@ -23,7 +23,7 @@ const Schema kMesh{"mesh", {
 
 /// Reads `mesh` (path relative to the scene file) with the scene's options.
 MeshData load_mesh(Reader& rd, const YAML::Node& mn) {
-  const Section m(rd, mn, "mesh", kMesh);
+  const Section m(rd, mn, "mesh", kMeshSchema);
   const YAML::Node fn = m.node("file");
   const std::string given = m.text("file");
   // Relative to the scene file's directory (inputs/x.yaml names ../meshes/y.geo).
@@ -214,6 +214,6 @@ void read_mesh_and_blocks(Reader& rd, SceneBuilder& sb, const YAML::Node& root, 
   if (dimension == 3) keep_groups(sb, mesh, sb.blocks.node_of);
 }
 
-const Schema& mesh_schema() { return kMesh; }
+const Schema& mesh_schema() { return kMeshSchema; }
 
 }  // namespace alphaflex::scene_detail

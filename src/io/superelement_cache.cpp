@@ -28,8 +28,8 @@ using io_detail::Rows;
 
 // Bump when the meaning of a stored field changes (not for a change of its C++ type: the layout
 // signature below is part of every key).
-constexpr const char* kFormat = "alphaflex superelements";
-constexpr long long kVersion = 2;  // 2: the key has the evaluated reduction keys
+constexpr const char* kCacheFormat = "alphaflex superelements";
+constexpr long long kCacheVersion = 2;  // 2: the key has the evaluated reduction keys
 
 // ---- ReducedBlock as a list of flat fields ------------------------------------------------------
 //
@@ -424,7 +424,7 @@ SuperelementKey::SuperelementKey(const std::string& settings, const Model& scrat
                                  const BlockMatrices& block)
     : nodes_(block.nodes.size()) {
   std::ostringstream t;
-  t << kFormat << " " << kVersion << "\nlayout " << layout_signature() << "\n" << settings << "\nnodes " << scratch.nodes().size() << "\n";
+  t << kCacheFormat << " " << kCacheVersion << "\nlayout " << layout_signature() << "\n" << settings << "\nnodes " << scratch.nodes().size() << "\n";
   for (const Node& n : scratch.nodes()) {
     t << n.name << " " << to_string(n.kind);
     for (Eigen::Index i = 0; i < n.q0.size(); ++i) t << " " << hex_float(n.q0[i]);
@@ -479,9 +479,9 @@ ReducedBlock SuperelementCache::find_or_reduce(const std::string& name, const Su
         try {
           std::string format;
           long long version = 0;
-          if (!io_detail::read_attribute(f, "format", format) || format != kFormat)
-            error = "is not a superelement cache (its attribute 'format' is not '" + std::string(kFormat) + "')";
-          else if (io_detail::read_attribute(f, "version", version) && version == kVersion)
+          if (!io_detail::read_attribute(f, "format", format) || format != kCacheFormat)
+            error = "is not a superelement cache (its attribute 'format' is not '" + std::string(kCacheFormat) + "')";
+          else if (io_detail::read_attribute(f, "version", version) && version == kCacheVersion)
             packed = read_entry(f, ec ? 0 : bytes, block, key.digest(), key.text(), error);
           // (another version: its entries are not read, and the file is rewritten)
         } catch (const std::exception& e) {
@@ -547,8 +547,8 @@ void SuperelementCache::finish() {
   std::map<std::string, int> kept;  // entries per block
   std::map<std::string, std::vector<std::string>> digests;
   if (f >= 0) {
-    io_detail::write_attribute(h5, f, "format", std::string(kFormat));
-    io_detail::write_attribute(h5, f, "version", kVersion);
+    io_detail::write_attribute(h5, f, "format", std::string(kCacheFormat));
+    io_detail::write_attribute(h5, f, "version", kCacheVersion);
     const double now = static_cast<double>(std::time(nullptr));
     for (const Entry& e : computed_) {
       if (!h5.error().empty()) break;
@@ -579,8 +579,8 @@ void SuperelementCache::finish() {
       std::vector<Old> entries;
       std::string format;
       long long version = 0;
-      if (io_detail::read_attribute(old, "format", format) && format == kFormat && io_detail::read_attribute(old, "version", version) &&
-          version == kVersion)
+      if (io_detail::read_attribute(old, "format", format) && format == kCacheFormat && io_detail::read_attribute(old, "version", version) &&
+          version == kCacheVersion)
         for (const std::string& b : links(old)) {
           const hid_t bg = H5Gopen2(old, b.c_str(), H5P_DEFAULT);
           if (bg < 0) continue;

@@ -18,7 +18,7 @@ XdmfIndex::XdmfIndex(std::string path, std::string parts_name, size_t nodes, siz
 namespace {
 
 /// "cannot OPERATION: FILE (errno's text)".
-std::string failure(const std::string& operation, const std::string& file) {
+std::string write_failure(const std::string& operation, const std::string& file) {
   std::string e = "cannot " + operation + ": " + file;
   if (errno != 0) e += std::string(" (") + std::strerror(errno) + ")";
   return e;
@@ -217,7 +217,7 @@ std::string XdmfIndex::write(const std::vector<OutputStep>& steps) const {
     x.setstate(std::ios::badbit);
   }
   if (!x) {
-    const std::string e = failure("write the XDMF index", tmp);
+    const std::string e = write_failure("write the XDMF index", tmp);
     discard();
     return e;
   }
@@ -229,7 +229,7 @@ std::string XdmfIndex::publish() const {
   errno = 0;
   std::error_code ec;
   std::filesystem::rename(tmp, path_, ec);
-  if (ec) return failure("rename to " + path_, tmp);
+  if (ec) return write_failure("rename to " + path_, tmp);
   return {};
 }
 

@@ -36,7 +36,7 @@ Pose<Along> moving(const Pose<double>& p, const Eigen::Vector3d& vx, const Eigen
 ///   ∂d/∂(δx_B, δx_f, δθ_f, u) = (I, −I, R_f (X_a + u)^, −R_f),
 ///   ∂(aᵢ·bⱼ)/∂δθ_B = (eⱼ × R_Bᵀaᵢ)ᵀ, ∂/∂δθ_f = (Ceᵢ × R_fᵀbⱼ)ᵀ, ∂/∂ψ = (eᵢ × R_aᵀbⱼ)ᵀ T(ψ)
 /// (−vᵀŵ = (w × v)ᵀ). None of these formulas uses RᵀR = I, so they hold at the frames
-/// R(I + δθ'^) that `second` differentiates them at. The AD1 Jacobian of the equations it
+/// R(I + δθ'^) that `tie_second` differentiates them at. The AD1 Jacobian of the equations it
 /// replaces cost ~25 % of a reduced slider-crank's run (docs/benchmarks/reduced.md);
 /// test_reduced_interface_tie.cpp compares the two.
 ///
@@ -70,7 +70,7 @@ Eigen::Matrix<S, 6, kVars> jacobian(const ReducedInterfaceTie& tie, const Pose<S
 
 /// Φ (by the scalar-generic `equations` in double: the AD path's value part to a few ulps) and
 /// ∂Φ/∂(δ_B, δ_f, z).
-void first(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z, Eigen::VectorXd& phi,
+void tie_first(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z, Eigen::VectorXd& phi,
            Eigen::Matrix<double, 6, kVars>& J) {
   const Eigen::Vector3d u = z.head<3>(), psi = z.tail<3>();
   phi.resize(6);
@@ -84,7 +84,7 @@ void first(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<dou
 /// frame matrix, and only first derivatives in δ' are taken, which R(I + δθ'^) and R exp(δθ'^)
 /// share (spatial_kernel.hpp's header). Nested AD2 of the equations, which it replaces, cost
 /// ~18 times as much (test_reduced_interface_tie.cpp compares the two to round-off).
-Eigen::Matrix<double, kVars, kVars> second(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z,
+Eigen::Matrix<double, kVars, kVars> tie_second(const ReducedInterfaceTie& tie, const Pose<double>& b, const Pose<double>& f, const Z& z,
                                            const Eigen::VectorXd& lambda) {
   const Pose<A1> bs = kernel_detail::seeded_pose1<kVars>(b, 0), fs = kernel_detail::seeded_pose1<kVars>(f, 6);
   Vec3<A1> u, psi;
@@ -137,7 +137,7 @@ Eigen::Matrix<double, 6, 1> ReducedInterfaceTie::z_of(const Eigen::VectorXd& q) 
 void ReducedInterfaceTie::evaluate(const Eigen::VectorXd& q, double, Eigen::VectorXd& phi, Eigen::MatrixXd& phi_q) const {
   const Z z = z_of(q);
   Eigen::Matrix<double, 6, kVars> J;
-  first(*this, pose_of(q.data()), pose_of(q.data() + 7), z, phi, J);
+  tie_first(*this, pose_of(q.data()), pose_of(q.data() + 7), z, phi, J);
   // Φ_ξ = Φ_z Φ_a: z is linear in ξ.
   phi_q.resize(6, 12 + shape_.cols());
   phi_q.leftCols<12>() = J.leftCols<12>();
@@ -147,7 +147,7 @@ void ReducedInterfaceTie::evaluate(const Eigen::VectorXd& q, double, Eigen::Vect
 void ReducedInterfaceTie::geometric_stiffness(const Eigen::VectorXd& q, double, const Eigen::VectorXd& lambda,
                                               Eigen::MatrixXd& k) const {
   const Eigen::Index m = shape_.cols();
-  const Eigen::Matrix<double, kVars, kVars> H = second(*this, pose_of(q.data()), pose_of(q.data() + 7), z_of(q), lambda);
+  const Eigen::Matrix<double, kVars, kVars> H = tie_second(*this, pose_of(q.data()), pose_of(q.data() + 7), z_of(q), lambda);
   // Pᵀ H P with P = diag(I₁₂, Φ_a): exact, z being linear in ξ (no second derivative of z).
   k.resize(12 + m, 12 + m);
   k.topLeftCorner<12, 12>() = H.topLeftCorner<12, 12>();

@@ -47,7 +47,7 @@ bool reads_outside(const std::string& text) {
   return false;
 }
 
-std::string hex_float(double v) {
+std::string key_hex_float(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%a", v);
   return buf;
@@ -97,8 +97,8 @@ std::string MeshCache::key(const std::string& path, const MeshOptions& options) 
   if (ext == ".geo" && reads_outside(bytes)) return {};
   std::ostringstream k;
   k << "reader " << reader_ << "\nextension " << ext << "\nelements_per_curve " << options.elements_per_curve
-    << "\nelement_size " << hex_float(options.element_size) << "\nparameters " << options.parameters.size() << "\n";
-  for (const auto& [name, value] : options.parameters) k << name.size() << ' ' << name << ' ' << hex_float(value) << "\n";
+    << "\nelement_size " << key_hex_float(options.element_size) << "\nparameters " << options.parameters.size() << "\n";
+  for (const auto& [name, value] : options.parameters) k << name.size() << ' ' << name << ' ' << key_hex_float(value) << "\n";
   k << "bytes " << bytes.size() << "\n" << bytes;
   return k.str();
 }

@@ -37,16 +37,17 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
+using testing::relative_error;
 
 // ------------------------------------------------------------------ helpers
 
-Vector3d random_vector(std::mt19937& rng, double scale) {
+Vector3d random_vector3(std::mt19937& rng, double scale) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   return scale * Vector3d(u(rng), u(rng), u(rng));
 }
 
-Matrix3d random_rotation(std::mt19937& rng) { return exp_so3<double>(random_vector(rng, 2.0)); }
+Matrix3d random_rotation(std::mt19937& rng) { return exp_so3<double>(random_vector3(rng, 2.0)); }
 
 /// Configuration numbers of two poses.
 VectorXd configuration(const Pose<double>& a, const Pose<double>& b) {
@@ -56,7 +57,7 @@ VectorXd configuration(const Pose<double>& a, const Pose<double>& b) {
   return q;
 }
 
-LocalState state(const VectorXd& q, const VectorXd& v = VectorXd::Zero(12), const VectorXd& qdd = VectorXd::Zero(12)) {
+LocalState beam_state(const VectorXd& q, const VectorXd& v = VectorXd::Zero(12), const VectorXd& qdd = VectorXd::Zero(12)) {
   return testing::local_state(q, v, qdd);
 }
 
@@ -66,14 +67,12 @@ using testing::element_tangents;
 /// Central differences of r (test_support.hpp): on the group for q, h = 1e-6 L0 for translations
 /// and 1e-6 rad for rotations; h = 1e-6 on v and q̈ (vector spaces).
 using testing::Wrt;
-MatrixXd central_differences(const Element& e, const LocalState& s, Wrt wrt, double length) {
+MatrixXd beam_central_differences(const Element& e, const LocalState& s, Wrt wrt, double length) {
   const testing::VectorFunction r_at = testing::element_residual_of(e, s, wrt);
   if (wrt == Wrt::q)
     return testing::central_differences_on_frames(r_at, s.q, [&](int j, double) { return 1e-6 * (j % 6 < 3 ? length : 1.0); });
   return testing::central_differences(r_at, testing::variable(s, wrt), testing::fixed_fd_step(1e-6));
 }
-
-double relative_error(const MatrixXd& exact, const MatrixXd& approx) { return (approx - exact).norm() / exact.norm(); }
 
 /// A section whose six stiffnesses and three inertias are all of order one, so that a relative
 /// matrix error measures every term (with steel's EA/EI ~ 1e5 an error in bending would hide).
@@ -91,7 +90,7 @@ Specimen specimen(std::mt19937& rng, const BeamSection& section, double length, 
                   const Vector3d& gravity = Vector3d::Zero(), double damping = 0.0) {
   const Matrix3d sec_a = random_rotation(rng);
   const Matrix3d sec_b = sec_a * exp_so3<double>(turn_b);
-  Pose<double> a{random_vector(rng, 1.0), random_rotation(rng)};
+  Pose<double> a{random_vector3(rng, 1.0), random_rotation(rng)};
   Pose<double> b{a.x + length * sec_a.col(0), random_rotation(rng)};
   return Specimen{a, b, sec_a, sec_b, GeometricallyExactBeam("beam", 0, 1, section, a, b, sec_a, sec_b, gravity, damping)};
 }
@@ -116,7 +115,7 @@ Chain cantilever(const BeamSection& section, double L, int n, const Vector3d& ax
   for (int e = 0; e < n; ++e) {
     const GeometricallyExactBeam beam("b", e, e + 1, section, nodes[e], nodes[e + 1], c.sec, c.sec, Vector3d::Zero(),
                                       damping);
-    const LocalResidual t = element_tangents(beam, state(configuration(nodes[e], nodes[e + 1])));
+    const LocalResidual t = element_tangents(beam, beam_state(configuration(nodes[e], nodes[e + 1])));
     K.block(6 * e, 6 * e, 12, 12) += t.K;
     M.block(6 * e, 6 * e, 12, 12) += t.M;
     C.block(6 * e, 6 * e, 12, 12) += t.C;
@@ -147,17 +146,17 @@ TEST(BeamTangents, MatchCentralDifferencesOnTheGroup) {
     const GeometricallyExactBeam& beam = sp.beam;
     const VectorXd q_ref = configuration(sp.a, sp.b);
     for (int sample = 0; sample < 6; ++sample) {
-      LocalState s = state(q_ref);
+      LocalState s = beam_state(q_ref);
       if (sample > 0) {
         // Deform (up to 0.15 L and 0.6 rad per node), then move rigidly; random velocities.
         VectorXd dx(12);
         for (int k = 0; k < 2; ++k) {
-          dx.segment<3>(6 * k) = random_vector(rng, 0.15 * L);
-          dx.segment<3>(6 * k + 3) = random_vector(rng, 0.6 / std::sqrt(3.0));
+          dx.segment<3>(6 * k) = random_vector3(rng, 0.15 * L);
+          dx.segment<3>(6 * k + 3) = random_vector3(rng, 0.6 / std::sqrt(3.0));
         }
         s.q = testing::retracted_frames(q_ref, dx);
         const Matrix3d Q = random_rotation(rng);
-        const Vector3d c = random_vector(rng, 1.0);
+        const Vector3d c = random_vector3(rng, 1.0);
         for (int k = 0; k < 2; ++k) {
           const Pose<double> p = pose_of(s.q.data() + 7 * k);
           store_pose(c + Q * p.x, Q * p.R, s.q.data() + 7 * k);
@@ -172,9 +171,9 @@ TEST(BeamTangents, MatchCentralDifferencesOnTheGroup) {
       largest_turn = std::max(largest_turn, turn);
       const LocalResidual t = element_tangents(beam, s);
       ASSERT_LT((t.r - element_residual(beam, s)).norm(), 1e-12 * t.r.norm() + 1e-14);
-      const MatrixXd Kfd = central_differences(beam, s, Wrt::q, L);
-      const MatrixXd Cfd = central_differences(beam, s, Wrt::v, L);
-      const MatrixXd Mfd = central_differences(beam, s, Wrt::qdd, L);
+      const MatrixXd Kfd = beam_central_differences(beam, s, Wrt::q, L);
+      const MatrixXd Cfd = beam_central_differences(beam, s, Wrt::v, L);
+      const MatrixXd Mfd = beam_central_differences(beam, s, Wrt::qdd, L);
       const double eK = relative_error(Kfd, t.K), eC = sample ? relative_error(Cfd, t.C) : 0.0;
       const double eM = relative_error(Mfd, t.M);
       EXPECT_LT(eK, 1e-6) << "sample " << sample << ", turn " << turn;
@@ -232,8 +231,8 @@ TEST(BeamTangents, ExactAcrossTheSwitchesOfLogAndItsSeries) {
   double worst = 0.0;
   for (double turn : {0.0, 1e-8, 0.00999, 0.0100001, 0.49, 0.51, 1.5707, 1.5709, 3.0}) {
     const Pose<double> bt{Vector3d(1.02, 0.05, -0.03), exp_so3<double>(Vector3d(turn * axis))};
-    const LocalState s = state(configuration(a, turn == 0.0 ? b : bt));
-    const double e = relative_error(central_differences(beam, s, Wrt::q, 1.0), element_tangents(beam, s).K);
+    const LocalState s = beam_state(configuration(a, turn == 0.0 ? b : bt));
+    const double e = relative_error(beam_central_differences(beam, s, Wrt::q, 1.0), element_tangents(beam, s).K);
     EXPECT_LT(e, 1e-8) << "turn " << turn;
     worst = std::max(worst, e);
   }
@@ -245,13 +244,13 @@ TEST(BeamTangents, ExactAcrossTheSwitchesOfLogAndItsSeries) {
 TEST(BeamInertia, RigidlySpinningElementGivesEulersEquation) {
   std::mt19937 rng(3);
   const Specimen sp = specimen(rng, unit_section(), 0.7, Vector3d::Zero());
-  const Vector3d W = random_vector(rng, 4.0), Wd = random_vector(rng, 9.0);
+  const Vector3d W = random_vector3(rng, 4.0), Wd = random_vector3(rng, 9.0);
   VectorXd v = VectorXd::Zero(12), qdd = VectorXd::Zero(12);
   for (int i = 0; i < 2; ++i) {
     v.segment<3>(6 * i + 3) = sp.beam.section_offset(i) * W;  // node components of the same Ω̄
     qdd.segment<3>(6 * i + 3) = sp.beam.section_offset(i) * Wd;
   }
-  const VectorXd r = element_residual(sp.beam, state(configuration(sp.a, sp.b), v, qdd));
+  const VectorXd r = element_residual(sp.beam, beam_state(configuration(sp.a, sp.b), v, qdd));
   const Matrix3d J = sp.beam.section().rotary_inertia();
   const Vector3d euler = 0.7 * (J * Wd + W.cross(J * W));
   for (int i = 0; i < 2; ++i)
@@ -264,7 +263,7 @@ TEST(BeamGravity, HalfTheWeightOnEachNodeTimesTheLoadFactor) {
   std::mt19937 rng(5);
   const Vector3d g(0.5, -1.0, -9.81);
   const Specimen sp = specimen(rng, unit_section(), 1.3, Vector3d(0.1, 0.2, -0.1), g);
-  LocalState s = state(configuration(sp.a, sp.b));
+  LocalState s = beam_state(configuration(sp.a, sp.b));
   s.load_factor = 0.25;
   const VectorXd r = element_residual(sp.beam, s);
   const Vector3d expected = -0.25 * 0.5 * 2.0 * sp.beam.reference_length() * g;
@@ -277,7 +276,7 @@ TEST(BeamGravity, HalfTheWeightOnEachNodeTimesTheLoadFactor) {
 // ------------------------------------------------------------------ closed-form elastic forces
 
 /// Relative Frobenius difference, or the absolute one where the reference vanishes.
-double difference(const MatrixXd& fast, const MatrixXd& reference) {
+double relative_difference(const MatrixXd& fast, const MatrixXd& reference) {
   const double n = reference.norm();
   return n > 0.0 ? (fast - reference).norm() / n : (fast - reference).norm();
 }
@@ -301,13 +300,13 @@ TEST(BeamElasticForces, ClosedFormEqualsNestedADOfTheEnergy) {
     beam.elastic_forces(q, r_only);
     EXPECT_LT((r_only - r).norm(), 1e-14 * (r.norm() + K.norm())) << what;  // double and AD1 paths
     // evaluate() adds exactly these (no inertia or gravity here, at rest).
-    const LocalResidual t = element_tangents(beam, state(q));
+    const LocalResidual t = element_tangents(beam, beam_state(q));
     EXPECT_EQ((t.K - K).norm(), 0.0) << what;
-    const double eK = difference(K, K_ref);
+    const double eK = relative_difference(K, K_ref);
     EXPECT_LT(eK, 1e-10) << what;
     worst_K = std::max(worst_K, eK);
     if (r_ref.norm() > 0.0) {
-      const double er = difference(r, r_ref);
+      const double er = relative_difference(r, r_ref);
       EXPECT_LT(er, 1e-10) << what;
       worst_r = std::max(worst_r, er);
     } else {  // undeformed: both vanish
@@ -330,19 +329,19 @@ TEST(BeamElasticForces, ClosedFormEqualsNestedADOfTheEnergy) {
   // Random specimens and states (as BeamTangents.MatchCentralDifferencesOnTheGroup).
   std::mt19937 rng(23);
   for (int kind = 0; kind < 4; ++kind) {
-    const Vector3d turn_b = kind == 0 ? Vector3d::Zero() : random_vector(rng, 0.4);
+    const Vector3d turn_b = kind == 0 ? Vector3d::Zero() : random_vector3(rng, 0.4);
     const Specimen sp = specimen(rng, unit_section(), 0.5 + 0.4 * kind, turn_b);
     const VectorXd q_ref = configuration(sp.a, sp.b);
     compare(sp.beam, q_ref, "reference of specimen " + std::to_string(kind));
     for (int sample = 0; sample < 10; ++sample) {
       VectorXd dx(12);
       for (int k = 0; k < 2; ++k) {
-        dx.segment<3>(6 * k) = random_vector(rng, 0.2 * sp.beam.reference_length());
-        dx.segment<3>(6 * k + 3) = random_vector(rng, 0.3 * (1 + sample % 3));
+        dx.segment<3>(6 * k) = random_vector3(rng, 0.2 * sp.beam.reference_length());
+        dx.segment<3>(6 * k + 3) = random_vector3(rng, 0.3 * (1 + sample % 3));
       }
       VectorXd q = testing::retracted_frames(q_ref, dx);
       const Matrix3d Q = random_rotation(rng);
-      const Vector3d c = random_vector(rng, 2.0);
+      const Vector3d c = random_vector3(rng, 2.0);
       for (int k = 0; k < 2; ++k) {
         const Pose<double> p = pose_of(q.data() + 7 * k);
         store_pose(c + Q * p.x, Q * p.R, q.data() + 7 * k);
@@ -385,14 +384,14 @@ TEST(BeamElasticForces, InternalForceIsTheResidualAtRestBitForBit) {
       const Specimen sp = specimen(rng, unit_section(), 1.3, turn, Vector3d(0, 0, -9.81), eta);
       for (int trial = 0; trial < 3; ++trial) {
         Pose<double> a = sp.a, b = sp.b;
-        a.x += random_vector(rng, 0.1);
-        a.R = a.R * exp_so3<double>(random_vector(rng, 0.5));
-        b.x += random_vector(rng, 0.1);
-        b.R = b.R * exp_so3<double>(random_vector(rng, 0.5));
+        a.x += random_vector3(rng, 0.1);
+        a.R = a.R * exp_so3<double>(random_vector3(rng, 0.5));
+        b.x += random_vector3(rng, 0.1);
+        b.R = b.R * exp_so3<double>(random_vector3(rng, 0.5));
         const VectorXd q = configuration(a, b);
         VectorXd r;
         ASSERT_TRUE(sp.beam.internal_force(q, r));
-        LocalState s = state(q);
+        LocalState s = beam_state(q);
         s.load_factor = 0.0;
         const VectorXd at_rest = element_residual(sp.beam, s);
         ASSERT_EQ(r.size(), 12);
@@ -408,12 +407,12 @@ TEST(BeamStrain, IsObjective) {
   for (int sample = 0; sample < 5; ++sample) {
     VectorXd dx(12);
     for (int k = 0; k < 2; ++k) {
-      dx.segment<3>(6 * k) = random_vector(rng, 0.2);
-      dx.segment<3>(6 * k + 3) = random_vector(rng, 0.5);
+      dx.segment<3>(6 * k) = random_vector3(rng, 0.2);
+      dx.segment<3>(6 * k + 3) = random_vector3(rng, 0.5);
     }
     const VectorXd q = testing::retracted_frames(configuration(sp.a, sp.b), dx);
     const Matrix3d Q = random_rotation(rng);
-    const Vector3d c = random_vector(rng, 3.0);
+    const Vector3d c = random_vector3(rng, 3.0);
     VectorXd qm(14);
     for (int k = 0; k < 2; ++k) {
       const Pose<double> p = pose_of(q.data() + 7 * k);
@@ -424,10 +423,10 @@ TEST(BeamStrain, IsObjective) {
     EXPECT_LT((b.strain(qm) - b.strain(q)).norm(), 1e-13);
     EXPECT_NEAR(b.elastic_energy(qm), b.elastic_energy(q), 1e-13 * b.elastic_energy(q));
     VectorXd f, fm;
-    b.output(state(q), f);
-    b.output(state(qm), fm);
+    b.output(beam_state(q), f);
+    b.output(beam_state(qm), fm);
     EXPECT_LT((fm - f).norm(), 1e-12 * f.norm());
-    const LocalResidual t = element_tangents(b, state(q)), tm = element_tangents(b, state(qm));
+    const LocalResidual t = element_tangents(b, beam_state(q)), tm = element_tangents(b, beam_state(qm));
     MatrixXd P = MatrixXd::Identity(12, 12);
     P.block<3, 3>(0, 0) = Q;
     P.block<3, 3>(6, 6) = Q;
@@ -446,7 +445,7 @@ TEST(BeamStrain, PureBendingAndEveryConstantStrainStateAreExact) {
   for (double phi : {1e-3, 0.1, 0.5, 1.0, 2.0, 3.0}) {
     const double L0 = rho * phi;
     const Matrix3d Q = random_rotation(rng);  // the circle's plane, anywhere in space
-    const Vector3d c = random_vector(rng, 1.0);
+    const Vector3d c = random_vector3(rng, 1.0);
     const Matrix3d node_a = random_rotation(rng), node_b = random_rotation(rng);  // node frames ≠ sections
     const Pose<double> a0{c, node_a}, b0{c + L0 * Q.col(0), node_b};
     const GeometricallyExactBeam beam("arc", 0, 1, unit_section(), a0, b0, Q, Q, Vector3d::Zero());
@@ -463,15 +462,15 @@ TEST(BeamStrain, PureBendingAndEveryConstantStrainStateAreExact) {
   }
   // Any constant strain ξ on a curved, twisted reference: H_B = H_A exp(L0 ξ_total).
   for (int sample = 0; sample < 5; ++sample) {
-    const Specimen sp = specimen(rng, unit_section(), 0.5 + sample, random_vector(rng, 0.3));
+    const Specimen sp = specimen(rng, unit_section(), 0.5 + sample, random_vector3(rng, 0.3));
     const GeometricallyExactBeam& beam = sp.beam;
     Vector6d xi;
-    xi << random_vector(rng, 0.1), random_vector(rng, 0.4) / beam.reference_length();
+    xi << random_vector3(rng, 0.1), random_vector3(rng, 0.4) / beam.reference_length();
     const Vector6d total = beam.reference_strain() + xi;
     const double L0 = beam.reference_length();
     const Vector3d kappa = L0 * total.tail<3>();
     const Matrix3d RsA = random_rotation(rng);
-    const Vector3d xA = random_vector(rng, 1.0);
+    const Vector3d xA = random_vector3(rng, 1.0);
     const Matrix3d RsB = RsA * exp_so3<double>(kappa);
     const Vector3d xB = xA + RsA * (tangent_so3<double>(kappa).transpose() * (L0 * total.head<3>()));
     const Pose<double> a{xA, RsA * beam.section_offset(0).transpose()};
@@ -554,7 +553,7 @@ TEST(BeamLargeRotation, EndMomentRollsTheCantileverIntoAnExactCircle) {
       VectorXd r = VectorXd::Zero(6 * (n + 1));
       MatrixXd K = MatrixXd::Zero(6 * (n + 1), 6 * (n + 1));
       for (int e = 0; e < n; ++e) {
-        const LocalResidual t = element_tangents(beams[e], state(q.segment<14>(7 * e)));
+        const LocalResidual t = element_tangents(beams[e], beam_state(q.segment<14>(7 * e)));
         r.segment<12>(6 * e) += t.r;
         K.block<12, 12>(6 * e, 6 * e) += t.K;
       }
@@ -753,7 +752,7 @@ TEST(BeamOutput, NamesAndValuesAreSectionForcesThenStrains) {
   dx << 0.01, -0.02, 0.03, 0.1, -0.05, 0.2, 0.02, 0.01, -0.01, -0.1, 0.3, 0.05;
   const VectorXd q = testing::retracted_frames(configuration(sp.a, sp.b), dx);
   VectorXd out;
-  sp.beam.output(state(q), out);
+  sp.beam.output(beam_state(q), out);
   ASSERT_EQ(out.size(), 12);
   const Vector6d e = sp.beam.strain(q);
   EXPECT_LT((out.tail<6>() - e).norm(), 1e-15);
@@ -780,20 +779,20 @@ TEST(BeamDamping, TangentsMatchCentralDifferencesOnTheGroup) {
     const Specimen elastic = specimen(twin_rng, unit_section(), L, turn, Vector3d(0.0, 0.0, -9.81));
     const VectorXd q_ref = configuration(sp.a, sp.b);
     for (int sample = 0; sample < 5; ++sample) {
-      LocalState s = state(q_ref);
+      LocalState s = beam_state(q_ref);
       VectorXd dx(12);
       for (int k = 0; k < 2; ++k) {
-        dx.segment<3>(6 * k) = random_vector(rng, 0.15 * L);
-        dx.segment<3>(6 * k + 3) = random_vector(rng, 0.6 / std::sqrt(3.0));
+        dx.segment<3>(6 * k) = random_vector3(rng, 0.15 * L);
+        dx.segment<3>(6 * k + 3) = random_vector3(rng, 0.6 / std::sqrt(3.0));
       }
       if (sample > 0) s.q = testing::retracted_frames(q_ref, dx);
       s.v = VectorXd::Random(12) * 3.0;
       s.qdd = VectorXd::Random(12) * 5.0;
       const LocalResidual t = element_tangents(sp.beam, s);
       ASSERT_LT((t.r - element_residual(sp.beam, s)).norm(), 1e-12 * t.r.norm());
-      const MatrixXd Kfd = central_differences(sp.beam, s, Wrt::q, L);
-      const MatrixXd Cfd = central_differences(sp.beam, s, Wrt::v, L);
-      const MatrixXd Mfd = central_differences(sp.beam, s, Wrt::qdd, L);
+      const MatrixXd Kfd = beam_central_differences(sp.beam, s, Wrt::q, L);
+      const MatrixXd Cfd = beam_central_differences(sp.beam, s, Wrt::v, L);
+      const MatrixXd Mfd = beam_central_differences(sp.beam, s, Wrt::qdd, L);
       const double eK = relative_error(Kfd, t.K), eC = relative_error(Cfd, t.C);
       EXPECT_LT(eK, 1e-6) << "sample " << sample;
       EXPECT_LT(eC, 1e-6) << "sample " << sample;
@@ -820,7 +819,7 @@ TEST(BeamDamping, TangentsMatchCentralDifferencesOnTheGroup) {
       mutation_K = std::min(mutation_K, relative_error(Kfd, te.K));
       mutation_C = std::min(mutation_C, relative_error(Cfd, te.C));
       // A rigid motion (translation u, world angular velocity w): ẋ_i = u + w × x_i, Ω_i = R_iᵀ w.
-      const Vector3d u = random_vector(rng, 2.0), w = random_vector(rng, 2.0);
+      const Vector3d u = random_vector3(rng, 2.0), w = random_vector3(rng, 2.0);
       LocalState rigid = moving;
       for (int k = 0; k < 2; ++k) {
         const Pose<double> pk = pose_of(s.q.data() + 7 * k);
@@ -877,7 +876,7 @@ TEST(BeamDamping, ZeroIsTheElasticElementAndANegativeEtaIsRefused) {
   std::mt19937 twin = rng;
   const Specimen a = specimen(rng, unit_section(), 0.8, Vector3d(0.1, 0.2, -0.1));
   const Specimen z = specimen(twin, unit_section(), 0.8, Vector3d(0.1, 0.2, -0.1), Vector3d::Zero(), 0.0);
-  LocalState s = state(configuration(a.a, a.b), VectorXd::Random(12), VectorXd::Random(12));
+  LocalState s = beam_state(configuration(a.a, a.b), VectorXd::Random(12), VectorXd::Random(12));
   const LocalResidual ta = element_tangents(a.beam, s), tz = element_tangents(z.beam, s);
   EXPECT_EQ(ta.r, tz.r);
   EXPECT_EQ(ta.K, tz.K);

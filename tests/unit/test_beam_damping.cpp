@@ -10,19 +10,15 @@
 
 #include "test_scene_runs.hpp"
 
-using namespace alphaflex;
-using namespace alphaflex::testing;
-
+namespace alphaflex::testing {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// The cantilever of inputs/beam_impulse_damped.yaml (10 m, 10 elements, EI = 1.4e4 N·m²,
 /// ρA = 1.2 kg/m; first bending mode ω1 = 1.8751² √(EI/(ρA L⁴)) = 3.80 rad/s, Euler–Bernoulli),
 /// struck at its tip by a 0.1 s triangle of 200 N (a tip deflection of ~3 cm: linear), then free.
 /// ρ∞ = 1: the scheme adds no damping of its own. `damping` is the text of the beam block's key
 /// ("" for none).
-std::string cantilever(int dimension, const std::string& damping, double t_end) {
+std::string cantilever_yaml(int dimension, const std::string& damping, double t_end) {
   std::ostringstream y;
   y << "name: damped_cantilever\ndimension: " << dimension << "\n"
     << "solver: {rho_inf: 1.0, h: 0.005, t_end: " << t_end << "}\n"
@@ -45,7 +41,7 @@ std::string cantilever(int dimension, const std::string& damping, double t_end) 
 }
 
 RunSummary run_cantilever(int dimension, const std::string& damping, double t_end) {
-  return run_text(cantilever(dimension, damping, t_end), source_path("inputs/damped_cantilever.yaml"));
+  return run_text(cantilever_yaml(dimension, damping, t_end), source_path("inputs/damped_cantilever.yaml"));
 }
 
 /// The tip's successive maxima (times and values, parabola through the three samples around each).
@@ -121,8 +117,10 @@ TEST(BeamDampingRuns, BadDampingIsRefusedNamingTheKey) {
     EXPECT_NE(m.find("damping"), std::string::npos) << m;
     EXPECT_NE(m.find("-0.01"), std::string::npos) << m;
   }
-  std::string reduced = cantilever(3, "0.01", 0.01);
+  std::string reduced = cantilever_yaml(3, "0.01", 0.01);
   reduced.replace(reduced.find("    orientation"), 0, "    reduction: {modes: 2}\n");
   const std::string m = input_error_of([&] { run_text(reduced, source_path("inputs/damped_cantilever.yaml")); });
   EXPECT_NE(m.find("material damping is for a full-mesh block"), std::string::npos) << m;
 }
+
+}  // namespace alphaflex::testing

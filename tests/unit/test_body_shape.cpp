@@ -16,7 +16,7 @@
 namespace alphaflex {
 namespace {
 
-const double kPi = std::acos(-1.0);
+using testing::kPi;
 
 TEST(BodyShapeTessellation, BoxIsClosedWithExactAreaAndVolume) {
   const SurfaceMesh s = box_surface({0.3, 0.05, 0.02});

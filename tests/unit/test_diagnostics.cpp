@@ -11,7 +11,7 @@
 namespace alphaflex {
 namespace {
 
-const char* kPendulum = R"(
+const char* kPendulumScene = R"(
 bodies:
   - {name: bar, type: rigid_body, mass: 1, inertia: 0.1, position: [0.5, 0], angle: 0}
 joints:
@@ -19,14 +19,14 @@ joints:
 )";
 
 TEST(Diagnostics, WellPosedPendulumHasNoFinding) {
-  Scene sc = read_scene_text(kPendulum, "pendulum.yaml");
+  Scene sc = read_scene_text(kPendulumScene, "pendulum.yaml");
   EXPECT_TRUE(find_redundant_constraints(*sc.model, sc.model->initial_state()).empty());
   EXPECT_EQ(diagnose_singular_system(*sc.model, sc.model->initial_state()), "");
 }
 
 // A second pin at the same point repeats both equations of the first.
 TEST(Diagnostics, DuplicatePinIsNamedAsRedundant) {
-  Scene sc = read_scene_text(std::string(kPendulum) + "  - {name: pin2, type: fixed_point, body: bar, point: [-0.5, 0]}\n",
+  Scene sc = read_scene_text(std::string(kPendulumScene) + "  - {name: pin2, type: fixed_point, body: bar, point: [-0.5, 0]}\n",
                              "pendulum.yaml");
   const auto red = find_redundant_constraints(*sc.model, sc.model->initial_state());
   ASSERT_EQ(red.size(), 2u);
@@ -42,7 +42,7 @@ TEST(Diagnostics, DuplicatePinIsNamedAsRedundant) {
 // A rigid bar pinned to the ground at both ends is over-constrained by one equation: the
 // x-equation of the second pin repeats what the first pin and the rigidity impose.
 TEST(Diagnostics, BarPinnedAtBothEndsHasOneRedundantEquation) {
-  Scene sc = read_scene_text(std::string(kPendulum) +
+  Scene sc = read_scene_text(std::string(kPendulumScene) +
                                  "  - {name: tip, type: revolute, body1: bar, point1: [0.5, 0], body2: ground, point2: [1, 0]}\n",
                              "bar.yaml");
   const auto red = find_redundant_constraints(*sc.model, sc.model->initial_state());
@@ -123,7 +123,7 @@ forces:
 TEST(Diagnostics, RunReportsRedundantJointsAndFreeMasslessPointsByName) {
   RunOptions opt;
   opt.write_results = false;
-  Scene red = read_scene_text(std::string(kPendulum) + "  - {name: pin2, type: fixed_point, body: bar, point: [-0.5, 0]}\n",
+  Scene red = read_scene_text(std::string(kPendulumScene) + "  - {name: pin2, type: fixed_point, body: bar, point: [-0.5, 0]}\n",
                               "red.yaml");
   try {
     run_simulation(red, opt, PETSC_COMM_WORLD);

@@ -19,14 +19,16 @@
 #include "alphaflex/model/planar_marker.hpp"
 #include "test_support.hpp"
 
-using namespace alphaflex;
-
+namespace alphaflex {
 namespace {
 
 constexpr double kRelTol = 1e-6;    // FD tangent vs analytic, relative to the matrix norm
 constexpr double kValueTol = 1e-12; // hand-computed residuals (relative)
 constexpr int kSamples = 10;        // random states per element
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
+using testing::random_vector;
+using testing::uniform;
+using testing::vec;
 
 // ------------------------------------------------------------------ nodes
 Node rigid_node(const Eigen::Vector3d& q0) {
@@ -136,14 +138,6 @@ void check_tangents(const Element& e, const Sampler& sample, const std::string& 
               label.c_str());
 }
 
-double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-
-Eigen::VectorXd random_vector(std::mt19937& rng, int n, double a, double b) {
-  Eigen::VectorXd x(n);
-  for (int i = 0; i < n; ++i) x[i] = uniform(rng, a, b);
-  return x;
-}
-
 /// A random state of n local dofs: q = base + perturbation, angles at `angles` uniform in (−π, π).
 LocalState random_state(std::mt19937& rng, const Eigen::VectorXd& base, const std::vector<int>& angles) {
   const int n = static_cast<int>(base.size());
@@ -163,13 +157,6 @@ LocalState state(const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen
   s.qdd = qdd;
   s.t = t;
   return s;
-}
-
-Eigen::VectorXd vec(std::initializer_list<double> x) {
-  Eigen::VectorXd v(static_cast<int>(x.size()));
-  int i = 0;
-  for (double xi : x) v[i++] = xi;
-  return v;
 }
 
 void expect_vector_near(const Eigen::VectorXd& actual, const Eigen::VectorXd& expected, double rel_tol) {
@@ -413,3 +400,5 @@ TEST(Torque2D, ResidualIsMinusTorqueOnTheAngle) {
   expect_vector_near(residual(torque, state(vec({1.0, 2.0, 0.5}), vec({1.0, 0.0, 3.0}), vec({0.0, 0.0, 0.0}), 1.0)),
                      vec({0.0, 0.0, -2.0}), kValueTol);
 }
+
+}  // namespace alphaflex

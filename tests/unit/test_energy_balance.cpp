@@ -3,9 +3,7 @@
 // sensors `energy` (of: a block, a body, the model) and `work` (accumulated by the trapezoidal rule).
 #include "test_support.hpp"
 
-using namespace alphaflex;
-using namespace alphaflex::testing;
-
+namespace alphaflex::testing {
 namespace {
 
 /// max over the output times of |E − E(0) − W + D|, and the scale of the exchanges (max |W|, |D|).
@@ -93,3 +91,5 @@ TEST(EnergyBalance, BadInputIsRefusedNamingTheKey) {
     EXPECT_NE(msg.find(expected), std::string::npos) << "got: " << msg << "\nexpected: " << expected;
   }
 }
+
+}  // namespace alphaflex::testing

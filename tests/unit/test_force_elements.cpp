@@ -15,52 +15,27 @@
 #include "alphaflex/joints/joint_coordinate.hpp"
 #include "test_scene_runs.hpp"
 
-using namespace alphaflex;
-using namespace alphaflex::testing;
-
+namespace alphaflex::testing {
 namespace {
 
-constexpr double kRelTol = 1e-6;  // FD vs exact, relative to the matrix norm (FD error ~1e-9 at h = 1e-6)
-constexpr int kSamples = 8;
-
-double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-Eigen::VectorXd random_vector(std::mt19937& rng, int n, double a, double b) {
-  Eigen::VectorXd x(n);
-  for (int i = 0; i < n; ++i) x[i] = uniform(rng, a, b);
-  return x;
-}
-Pose<double> random_pose(std::mt19937& rng, double max_angle = 3.0) {
-  const Eigen::Vector3d w = random_vector(rng, 3, -1.0, 1.0);
-  return {random_vector(rng, 3, -1.0, 1.0), exp_so3<double>(Eigen::Vector3d(uniform(rng, 0.0, max_angle) * w.normalized()))};
-}
-Eigen::VectorXd stored(const std::vector<Pose<double>>& poses) {
-  Eigen::VectorXd q(7 * poses.size());
-  for (size_t k = 0; k < poses.size(); ++k) store_pose(poses[k].x, poses[k].R, q.data() + 7 * k);
-  return q;
-}
-SpatialMarker marker(int slot, const Eigen::Vector3d& p, const Eigen::Vector3d& w = Eigen::Vector3d::Zero()) {
-  SpatialMarker m;
-  m.slot = slot;
-  m.position = p;
-  m.rotation = exp_so3<double>(w);
-  return m;
-}
+constexpr double kForceRelTol = 1e-6;  // FD vs exact, relative to the matrix norm (FD error ~1e-9 at h = 1e-6)
+constexpr int kForceSamples = 8;
 
 /// K and C of `e` at `s` against central differences (on the group for K, h = 1e-6); returns the
 /// worst relative discrepancy.
-double check_tangents(const Element& e, const LocalState& s) {
+double check_force_tangents(const Element& e, const LocalState& s) {
   const LocalResidual t = element_tangents(e, s);
   const Eigen::MatrixXd K = central_differences_on_frames(element_residual_of(e, s, Wrt::q), s.q, fixed_fd_step(1e-6));
   const Eigen::MatrixXd C = central_differences(element_residual_of(e, s, Wrt::v), s.v, fixed_fd_step(1e-6));
   const double k_err = (t.K - K).norm() / std::max(K.norm(), 1e-300);
   const double c_err = (t.C - C).norm() / std::max(C.norm(), 1e-300);
-  EXPECT_LE(k_err, kRelTol) << "K exact\n" << t.K << "\nFD\n" << K;
-  EXPECT_LE(c_err, kRelTol) << "C exact\n" << t.C << "\nFD\n" << C;
+  EXPECT_LE(k_err, kForceRelTol) << "K exact\n" << t.K << "\nFD\n" << K;
+  EXPECT_LE(c_err, kForceRelTol) << "C exact\n" << t.C << "\nFD\n" << C;
   EXPECT_EQ(t.M.norm(), 0.0);
   return std::max(k_err, c_err);
 }
 
-LocalState state(const Eigen::VectorXd& q, std::mt19937& rng) {
+LocalState state_with_random_velocity(const Eigen::VectorXd& q, std::mt19937& rng) {
   const int n = static_cast<int>(q.size() / 7 * 6);
   return local_state(q, random_vector(rng, n, -2.0, 2.0), Eigen::VectorXd::Zero(n));
 }
@@ -125,9 +100,9 @@ TEST(SpatialSpringDamper, ResidualIsTheTensionAlongTheLineOfItsPoints) {
   const double k = 300.0, c = 7.0, L0 = 0.8, f0 = 25.0;
   const Eigen::Vector3d sA(0.2, -0.1, 0.3), sB(-0.4, 0.1, 0.05);
   const SpatialSpringDamper spring("s", {0, 1}, marker(0, sA), marker(1, sB), ScalarForceLaw::linear(k, c, L0, f0));
-  for (int i = 0; i < kSamples; ++i) {
+  for (int i = 0; i < kForceSamples; ++i) {
     const Pose<double> A = random_pose(rng), B = random_pose(rng);
-    const LocalState s = state(stored({A, B}), rng);
+    const LocalState s = state_with_random_velocity(stored({A, B}), rng);
     const Eigen::Vector3d pA = A.x + A.R * sA, pB = B.x + B.R * sB;
     const Eigen::Vector3d vA = s.v.segment<3>(0) + A.R * s.v.segment<3>(3).cross(sA);
     const Eigen::Vector3d vB = s.v.segment<3>(6) + B.R * s.v.segment<3>(9).cross(sB);
@@ -153,11 +128,11 @@ TEST(SpatialSpringDamper, TangentsMatchFiniteDifferencesOnTheGroup) {
       SCOPED_TRACE(label + (ground ? ", to the ground" : ", between two nodes"));
       const SpatialSpringDamper spring("s", ground ? std::vector<int>{0} : std::vector<int>{0, 1},
                                        marker(0, {0.2, -0.1, 0.3}), marker(ground ? -1 : 1, {-0.4, 0.1, 1.05}), law);
-      for (int i = 0; i < kSamples; ++i) {
+      for (int i = 0; i < kForceSamples; ++i) {
         const Eigen::VectorXd q = ground ? stored({random_pose(rng)}) : stored({random_pose(rng), random_pose(rng)});
-        LocalState s = state(q, rng);
+        LocalState s = state_with_random_velocity(q, rng);
         s.t = uniform(rng, 0.0, 2.0);
-        worst = std::max(worst, check_tangents(spring, s));
+        worst = std::max(worst, check_force_tangents(spring, s));
       }
     }
     std::printf("[ FD       ] worst rel. error %.1e  spring_damper, %s\n", worst, label.c_str());
@@ -190,7 +165,7 @@ TEST(Bushing, IsUnloadedWhereItsFramesCoincideAndTangentsMatchFiniteDifferences)
   double worst = 0.0;
   for (const bool ground : {false, true}) {
     SCOPED_TRACE(ground ? "to the ground" : "between two nodes");
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kForceSamples; ++i) {
       const Pose<double> A = random_pose(rng);
       // B's marker: the bushing frame of A at t = 0, seen from B (so ε = 0 there), then B moved.
       const Pose<double> frame{A.x + A.R * sA, A.R * exp_so3<double>(wA)};
@@ -206,8 +181,8 @@ TEST(Bushing, IsUnloadedWhereItsFramesCoincideAndTangentsMatchFiniteDifferences)
                                                       Eigen::VectorXd::Zero(q0.size() / 7 * 6))).norm(), 1e-10);
       // Then a deflection (up to 0.4 rad, 0.2 m) and random velocities.
       const Eigen::VectorXd d = random_vector(rng, static_cast<int>(q0.size() / 7 * 6), -0.2, 0.2) * (i % 2 ? 2.0 : 1.0);
-      const LocalState s = state(retracted_frames(q0, d), rng);
-      worst = std::max(worst, check_tangents(bushing, s));
+      const LocalState s = state_with_random_velocity(retracted_frames(q0, d), rng);
+      worst = std::max(worst, check_force_tangents(bushing, s));
     }
   }
   std::printf("[ FD       ] worst rel. error %.1e  bushing\n", worst);
@@ -422,7 +397,7 @@ TEST(JointCoordinateLink, JacobianGeometricStiffnessAndAccelerationTermMatchFini
       SCOPED_TRACE(std::string(c == JointCoordinateLink::Coordinate::rotation ? "rotation" : "translation") +
                    (ground ? ", to the ground" : ", two nodes"));
       const JointCoordinateLink link = test_link(c, ground);
-      for (int i = 0; i < kSamples; ++i) {
+      for (int i = 0; i < kForceSamples; ++i) {
         const Eigen::VectorXd q = random_link_configuration(rng, ground);
         const Eigen::Index n = (q.size() - 1) / 7 * 6 + 1;
         const Eigen::VectorXd v = random_vector(rng, static_cast<int>(n), -2.0, 2.0);
@@ -438,7 +413,7 @@ TEST(JointCoordinateLink, JacobianGeometricStiffnessAndAccelerationTermMatchFini
         };
         const Eigen::MatrixXd fd_q = fd_link(phi_of, q);
         const double e1 = (phi_q - fd_q).norm() / phi_q.norm();
-        EXPECT_LE(e1, kRelTol) << phi_q << "\n" << fd_q;
+        EXPECT_LE(e1, kForceRelTol) << phi_q << "\n" << fd_q;
         // K_Φ = ∂(Φ_qᵀλ)/∂δ' (the derivative of the gradient at the perturbed configuration).
         link.geometric_stiffness(q, t, Eigen::VectorXd::Constant(1, lambda), k);
         const Eigen::MatrixXd fd_k = fd_link(
@@ -450,7 +425,7 @@ TEST(JointCoordinateLink, JacobianGeometricStiffnessAndAccelerationTermMatchFini
             },
             q);
         const double e2 = (k - fd_k).norm() / std::max(k.norm(), 1e-12);
-        EXPECT_LE(e2, kRelTol) << k << "\n" << fd_k;
+        EXPECT_LE(e2, kForceRelTol) << k << "\n" << fd_k;
         // (Φ_q v)_q v = d²Φ(q ∘ exp(τ v))/dτ² (scleronomic), by second differences (h = 1e-4).
         Eigen::VectorXd c_term;
         link.acceleration_term(q, v, t, c_term);
@@ -477,7 +452,7 @@ TEST(JointCoordinateLink, ClosedFormJacobianAndGeometricStiffnessEqualAutomaticD
     for (const bool ground : {false, true}) {
       SCOPED_TRACE("coordinate " + std::to_string(static_cast<int>(c)) + (ground ? ", to the ground" : ", two nodes"));
       const JointCoordinateLink link = test_link(c, ground);
-      for (int i = 0; i < kSamples; ++i) {
+      for (int i = 0; i < kForceSamples; ++i) {
         const Eigen::VectorXd q = random_link_configuration(rng, ground);
         const Eigen::VectorXd lambda = Eigen::VectorXd::Constant(1, uniform(rng, -5.0, 5.0));
         Eigen::VectorXd phi, phi_ad;
@@ -673,3 +648,5 @@ TEST(EnergySensors, ConstraintViolationOfAJointAndOfItsCoordinateLinkStaysAtRoun
     EXPECT_LE(row[1], 1e-12);
   }
 }
+
+}  // namespace alphaflex::testing

@@ -36,16 +36,16 @@ using Eigen::VectorXd;
 
 // A straight steel bar (rectangular 20 × 10 mm section: the two bending planes have distinct
 // frequencies) of n elements along a skew axis, so that no coordinate decouples by accident.
-struct Bar {
+struct SkewBar {
   Model model;
   std::vector<int> elements;
   BeamSection section = BeamSection::from_material(210e9, 0.3, 7850.0, SectionShape::rectangle(0.02, 0.01));
   double length = 0.0;
 };
 
-Bar straight_bar(int n, double L) {
+SkewBar skew_bar(int n, double L) {
   const Vector3d start(0.1, -0.2, 0.3), axis = Vector3d(2.0, 1.0, 0.5).normalized();
-  Bar b;
+  SkewBar b;
   b.length = L;
   Matrix3d sec;
   EXPECT_TRUE(frame_from(axis, Vector3d(0.3, 1.0, -0.2), sec));
@@ -69,19 +69,19 @@ Bar straight_bar(int n, double L) {
   return b;
 }
 
-VectorXd generalized_eigenvalues(const MatrixXd& K, const MatrixXd& M) {
+VectorXd pencil_eigenvalues(const MatrixXd& K, const MatrixXd& M) {
   return Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd>(K, M, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
 // A cantilever of n elements (node 0 clamped: its rows removed), interface = the tip's 6
 // coordinates: the tip is free in the full model, so the cantilever's own modes are the
 // free-interface modes Herting keeps.
-struct Cantilever {
-  Bar bar;
+struct SkewCantilever {
+  SkewBar bar;
   BlockMatrices block;
   MatrixXd K, M;
   std::vector<int> tip;
-  explicit Cantilever(int n, double L = 0.8) : bar(straight_bar(n, L)), block(assemble_block(bar.model, bar.elements)) {
+  explicit SkewCantilever(int n, double L = 0.8) : bar(skew_bar(n, L)), block(assemble_block(bar.model, bar.elements)) {
     const Eigen::Index m = block.K.rows() - 6;
     K = block.K.bottomRightCorner(m, m);
     M = block.M.bottomRightCorner(m, m);
@@ -104,7 +104,7 @@ std::string message(const std::function<void()>& f) {
 // reduced pencil is congruent to the full one and its eigenvalues are the full cantilever's to
 // round-off (the same bound: c ε λ_max/λ_j, c = 10, and a floor of 1e-12).
 TEST(Herting, AllModesKeptReproduceTheFullEigenvaluesToRoundOff) {
-  const Cantilever c(6);
+  const SkewCantilever c(6);
   const Superelement se = herting(c.K, c.M, c.tip, 36);
   ASSERT_EQ(se.T.rows(), 36);
   ASSERT_EQ(se.T.cols(), 36);
@@ -113,7 +113,7 @@ TEST(Herting, AllModesKeptReproduceTheFullEigenvaluesToRoundOff) {
   EXPECT_LT((se.M.bottomRightCorner(30, 30) - MatrixXd::Identity(30, 30)).norm(), 1e-10);
   EXPECT_GT(std::fabs(se.T.fullPivLu().determinant()), 0.0);
   EXPECT_EQ(se.T.fullPivLu().rank(), 36);
-  const VectorXd full = generalized_eigenvalues(c.K, c.M), reduced = generalized_eigenvalues(se.K, se.M);
+  const VectorXd full = pencil_eigenvalues(c.K, c.M), reduced = pencil_eigenvalues(se.K, se.M);
   const double lmax = full[full.size() - 1];
   double worst = 0.0;
   for (int j = 0; j < full.size(); ++j) {
@@ -128,7 +128,7 @@ TEST(Herting, AllModesKeptReproduceTheFullEigenvaluesToRoundOff) {
 // (what ReducedInterfaceTie needs), and the constraint modes carry the exact static response to
 // interface loads whatever the number of modes.
 TEST(Herting, InterfaceRowsAreTheInterfaceCoordinatesAndStaticsAreExact) {
-  const Cantilever c(6);
+  const SkewCantilever c(6);
   for (int k : {0, 3, 8}) {
     const Superelement se = herting(c.K, c.M, c.tip, k);
     ASSERT_EQ(se.T.cols(), 6 + k);
@@ -154,8 +154,8 @@ TEST(Herting, InterfaceRowsAreTheInterfaceCoordinatesAndStaticsAreExact) {
 // f₁ = (1.87510²/2π) √(EI/(ρA L⁴)) in each bending plane (within 0.5 %: shear and rotary
 // inertia at L/h = 40, and the mesh).
 TEST(Herting, KeptFreeInterfaceFrequenciesAreExactAndCloserThanCraigBamptons) {
-  const Cantilever c(20);
-  const VectorXd full = generalized_eigenvalues(c.K, c.M);
+  const SkewCantilever c(20);
+  const VectorXd full = pencil_eigenvalues(c.K, c.M);
   const BeamSection& s = c.bar.section;
   const double L = c.bar.length, beta = 1.8751040687;
   const double w_weak = beta * beta * std::sqrt(s.EI2() / (s.rhoA() * L * L * L * L));
@@ -167,7 +167,7 @@ TEST(Herting, KeptFreeInterfaceFrequenciesAreExactAndCloserThanCraigBamptons) {
   EXPECT_NEAR(std::sqrt(full[1]) / hi, 1.0, 5e-3);
   for (int k : {2, 4, 8}) {
     const Superelement h = herting(c.K, c.M, c.tip, k), cb = craig_bampton(c.K, c.M, c.tip, k);
-    const VectorXd rh = generalized_eigenvalues(h.K, h.M), rc = generalized_eigenvalues(cb.K, cb.M);
+    const VectorXd rh = pencil_eigenvalues(h.K, h.M), rc = pencil_eigenvalues(cb.K, cb.M);
     std::printf("k = %d:", k);
     for (int j = 0; j < k; ++j) {
       const double eh = std::sqrt(rh[j] / full[j]) - 1.0, ec = std::sqrt(rc[j] / full[j]) - 1.0;
@@ -183,7 +183,7 @@ TEST(Herting, KeptFreeInterfaceFrequenciesAreExactAndCloserThanCraigBamptons) {
   // Craig–Bampton at its best on the lowest mode is still visibly above: at k = 2 its lowest
   // frequency errs by more than 1e-7 (measured and printed above).
   const Superelement cb2 = craig_bampton(c.K, c.M, c.tip, 2);
-  EXPECT_GT(std::sqrt(generalized_eigenvalues(cb2.K, cb2.M)[0] / full[0]) - 1.0, 1e-7);
+  EXPECT_GT(std::sqrt(pencil_eigenvalues(cb2.K, cb2.M)[0] / full[0]) - 1.0, 1e-7);
 }
 
 // A free block (no support: 6 rigid-body modes) with an interface that holds it — the bar's two
@@ -191,17 +191,17 @@ TEST(Herting, KeptFreeInterfaceFrequenciesAreExactAndCloserThanCraigBamptons) {
 // elastic free-free frequencies are exact, the reduced pencil has exactly 6 zero eigenvalues, and
 // with all 36 elastic modes the full model is reproduced; 37 are more than the block has.
 TEST(Herting, FreeBlockRigidModesAreHeldByTheConstraintModes) {
-  const Bar bar = straight_bar(6, 0.8);
+  const SkewBar bar = skew_bar(6, 0.8);
   const BlockMatrices b = assemble_block(bar.model, bar.elements);
   std::vector<int> ends;
   for (int k = 0; k < 6; ++k) ends.push_back(b.row_of(0, k));
   for (int k = 0; k < 6; ++k) ends.push_back(b.row_of(6, k));
-  const VectorXd full = generalized_eigenvalues(b.K, b.M);
+  const VectorXd full = pencil_eigenvalues(b.K, b.M);
   ASSERT_LT(std::fabs(full[5]), 1e-12 * full[41]);  // rigid: the code's threshold
   for (int k : {3, 36}) {
     const Superelement se = herting(b.K, b.M, ends, k);
     ASSERT_EQ(se.T.cols(), 12 + std::min(k, 30));  // all 36 elastic modes: 30 add to the span
-    const VectorXd red = generalized_eigenvalues(se.K, se.M);
+    const VectorXd red = pencil_eigenvalues(se.K, se.M);
     for (int j = 0; j < 6; ++j) EXPECT_LT(std::fabs(red[j]), 1e-9 * full[6]) << "k = " << k << ", rigid mode " << j;
     EXPECT_GT(red[6], 0.5 * full[6]);
     const int exact = k == 3 ? 3 : 36;
@@ -214,7 +214,7 @@ TEST(Herting, FreeBlockRigidModesAreHeldByTheConstraintModes) {
 }
 
 TEST(Herting, RefusesBadInterfacesModeCountsAndFreeBlocksWithoutAnInterface) {
-  const Cantilever c(6);
+  const SkewCantilever c(6);
   EXPECT_NE(message([&] { herting(c.K, c.M, c.tip, 37); }).find("asks for 37 free-interface modes; the block has 36 (36 coordinates, 6 on the interface)"),
             std::string::npos);
   EXPECT_NE(message([&] { herting(c.K, c.M, c.tip, -1); }).find("asks for -1 free-interface modes"), std::string::npos);
@@ -223,7 +223,7 @@ TEST(Herting, RefusesBadInterfacesModeCountsAndFreeBlocksWithoutAnInterface) {
   // The supported cantilever needs no interface: T is then its lowest modes.
   const Superelement modes_only = herting(c.K, c.M, {}, 4);
   EXPECT_EQ(modes_only.T.cols(), 4);
-  const VectorXd full = generalized_eigenvalues(c.K, c.M), red = generalized_eigenvalues(modes_only.K, modes_only.M);
+  const VectorXd full = pencil_eigenvalues(c.K, c.M), red = pencil_eigenvalues(modes_only.K, modes_only.M);
   for (int j = 0; j < 4; ++j) EXPECT_NEAR(red[j] / full[j], 1.0, 1e-9);
   // The free bar: no interface and no support; held at one node's translations only (it can turn
   // about that node without strain).
@@ -240,13 +240,13 @@ TEST(Herting, RefusesBadInterfacesModeCountsAndFreeBlocksWithoutAnInterface) {
 // 1e-6 (eigenvectors: the residual over the spectral gap). A free block above the dense size is
 // refused (shift-and-invert at 0 would factor a singular K).
 TEST(Herting, SparsePathEqualsDensePathAndRefusesALargeFreeBlock) {
-  const Cantilever c(100, 1.0);
+  const SkewCantilever c(100, 1.0);
   const Eigen::SparseMatrix<double> K = c.K.sparseView(), M = c.M.sparseView();
   const Superelement dense = herting(K, M, c.tip, 8, ModeSolver::dense), sparse = herting(K, M, c.tip, 8, ModeSolver::sparse);
   const double ef = (sparse.frequencies - dense.frequencies).cwiseQuotient(dense.frequencies).cwiseAbs().maxCoeff();
   const double eK = (sparse.K - dense.K).norm() / dense.K.norm(), eM = (sparse.M - dense.M).norm() / dense.M.norm();
   const double eT = (sparse.T - dense.T).norm() / dense.T.norm();
-  const VectorXd lam = generalized_eigenvalues(c.K, c.M);
+  const VectorXd lam = pencil_eigenvalues(c.K, c.M);
   const double bound = 10.0 * DBL_EPSILON * lam[lam.size() - 1] / lam[0];
   std::printf("Herting, 600 coordinates, 8 modes: sparse vs dense: frequencies %.1e, K %.1e, M %.1e, T %.1e "
               "(bound 10 eps lambda_max/lambda_1 = %.1e)\n", ef, eK, eM, eT, bound);
@@ -267,18 +267,18 @@ TEST(Herting, SparsePathEqualsDensePathAndRefusesALargeFreeBlock) {
 
 // A free bar reduced on the frame of node 0 with node 4 on the interface (6 constraint-mode
 // coordinates) and `modes` free-interface modes (node 0 clamped, node 4 free).
-struct ReducedBar {
-  Bar bar = straight_bar(4, 0.6);
+struct ReducedSkewBar {
+  SkewBar bar = skew_bar(4, 0.6);
   BlockMatrices block = assemble_block(bar.model, bar.elements);
   ReducedBlock rb;
-  ReducedBar(int modes, bool inertia = false) : rb(reduce_block(bar.model, block, 0, {4}, modes, inertia, Reduction::herting)) {}
+  ReducedSkewBar(int modes, bool inertia = false) : rb(reduce_block(bar.model, block, 0, {4}, modes, inertia, Reduction::herting)) {}
 };
 
 // The element needs no change for a Herting basis (full K̃ and M̃ in the amplitudes: it assumes no
 // diagonal K̃ and no M-orthonormal modes), which its tangents against central differences show at
 // random rotating, deformed states with gravity (as ReducedBody.TangentsMatchFiniteDifferences).
 TEST(Herting, ReducedBodyTangentsMatchFiniteDifferences) {
-  const ReducedBar rb(3);
+  const ReducedSkewBar rb(3);
   const int m = rb.rb.matrices.elastic(), n = 6 + m;
   ASSERT_EQ(m, 9);
   // Not Craig–Bampton's form: K̃ is block diagonal (the constraint modes are K-orthogonal to any
@@ -336,7 +336,7 @@ TEST(Herting, ReducedBodyTangentsMatchFiniteDifferences) {
 // invertible, so the eigenfrequencies are the full linear model's to round-off. The interface
 // node's rows of the basis are its own 6 coordinates (the tie's requirement).
 TEST(Herting, ReducedBodyWithAllModesReproducesTheFullLinearModelAtRest) {
-  const ReducedBar rb(24);
+  const ReducedSkewBar rb(24);
   const int m = rb.rb.matrices.elastic(), n = 6 + m;
   ASSERT_EQ(n, rb.block.K.rows());
   const Matrix3d RA = pose_of(rb.bar.model.node(0).q0.data()).R;
@@ -369,7 +369,7 @@ TEST(Herting, ReducedBodyWithAllModesReproducesTheFullLinearModelAtRest) {
   const MatrixXd Mg = G.transpose() * rb.block.M * G, Kg = G.transpose() * rb.block.K * G;
   EXPECT_LT((t.M - Mg).norm(), 1e-12 * Mg.norm());
   EXPECT_LT((t.K - Kg).norm(), 1e-9 * Kg.norm());
-  const VectorXd full = generalized_eigenvalues(rb.block.K, rb.block.M), red = generalized_eigenvalues(t.K, t.M);
+  const VectorXd full = pencil_eigenvalues(rb.block.K, rb.block.M), red = pencil_eigenvalues(t.K, t.M);
   for (int j = 6; j < n; ++j) EXPECT_NEAR(red[j] / full[j], 1.0, 1e-9) << "mode " << j;
   for (int j = 0; j < 6; ++j) EXPECT_LT(std::fabs(red[j]), 1e-9 * full[6]) << "rigid mode " << j;
 }
@@ -377,7 +377,7 @@ TEST(Herting, ReducedBodyWithAllModesReproducesTheFullLinearModelAtRest) {
 // Inertia static modes appended to a Herting basis are M-orthogonal to its (M-orthonormal) modal
 // columns and unit in M.
 TEST(Herting, InertiaModesAreMOrthogonalToTheFreeInterfaceColumns) {
-  const ReducedBar plain(4), with(4, true);
+  const ReducedSkewBar plain(4), with(4, true);
   const Superelement& se = with.rb.superelement;
   const int added = static_cast<int>(se.T.cols()) - 10;
   ASSERT_GT(added, 0);

@@ -5,12 +5,10 @@
 
 #include "test_scene_runs.hpp"
 
-using namespace alphaflex;
-using namespace alphaflex::testing;
-
+namespace alphaflex::testing {
 namespace {
 
-std::string vec(const Eigen::Vector3d& v) {
+std::string yaml_list(const Eigen::Vector3d& v) {
   std::ostringstream os;
   os.precision(17);
   os << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
@@ -42,8 +40,8 @@ TEST(InitialConditions, ARigidVelocityFieldGivesTheClosedFormKineticEnergyOfTheB
   // to ρI L (the shape functions sum to 1), so T is exact to round-off. Strain energy at t = 0: 0.
   const Eigen::Vector3d v0(0.3, -0.2, 0.1), w0(1.5, -2.0, 3.0), xref(0.2, 0.4, -0.1), c(0.5, 0, 0);
   const std::string yaml = std::string("name: spin_energy\n") + kFreeBeam + "solver: {rho_inf: 1.0, h: 1e-4, t_end: 1e-4}\n" +
-                           "initial_conditions:\n  - {group: beam, velocity: " + vec(v0) + ", angular_velocity: " + vec(w0) +
-                           ", about: " + vec(xref) + "}\n" + beam_energy_sensors();
+                           "initial_conditions:\n  - {group: beam, velocity: " + yaml_list(v0) + ", angular_velocity: " + yaml_list(w0) +
+                           ", about: " + yaml_list(xref) + "}\n" + beam_energy_sensors();
   const RunSummary r = run_text(yaml, source_path("spin_energy.yaml"));
   const double m = 1.2, L = 1.0;
   const Eigen::Vector3d vc = v0 + w0.cross(c - xref);
@@ -62,7 +60,7 @@ TEST(InitialConditions, AFreeBeamSpinningAboutItsAxisMovesRigidlyWithoutStrainAt
   const double w = 6.0;
   const Eigen::Vector3d v0(0.3, -0.2, 0.1);
   const std::string yaml = std::string("name: axial_spin\n") + kFreeBeam + "solver: {rho_inf: 0.8, h: 0.01, t_end: 0.4}\n" +
-                           "initial_conditions:\n  - {group: beam, velocity: " + vec(v0) + ", angular_velocity: [" +
+                           "initial_conditions:\n  - {group: beam, velocity: " + yaml_list(v0) + ", angular_velocity: [" +
                            std::to_string(w) + ", 0, 0]}\n" + beam_energy_sensors() +
                            "  - {name: tip_x, type: point_position, body: tip, component: x}\n"
                            "  - {name: tip_y, type: point_position, body: tip, component: y}\n"
@@ -159,10 +157,10 @@ TEST(InitialConditions, APlacedBeamAndPlateMoveAsTheSameBlocksMeshedInThePlacedP
   a1 << angle1;
   const RunSummary placed = run_text(
       placed_scene("placed", here, "[0, 1, 0]",
-                   "initial_conditions:\n  - {group: beam, rotation: {axis: " + vec(axis1) + ", angle: " + a1.str() + "}, translation: " + vec(t1) +
-                       "}\n  - {group: plate, rotation: " + rot2.str() + ", translation: " + vec(t2) + "}\n"),
+                   "initial_conditions:\n  - {group: beam, rotation: {axis: " + yaml_list(axis1) + ", angle: " + a1.str() + "}, translation: " + yaml_list(t1) +
+                       "}\n  - {group: plate, rotation: " + rot2.str() + ", translation: " + yaml_list(t2) + "}\n"),
       dir.file("placed.yaml"));
-  const RunSummary meshed = run_text(placed_scene("meshed", there, vec(R1 * Eigen::Vector3d::UnitY()), ""), dir.file("meshed.yaml"));
+  const RunSummary meshed = run_text(placed_scene("meshed", there, yaml_list(R1 * Eigen::Vector3d::UnitY()), ""), dir.file("meshed.yaml"));
   ASSERT_EQ(placed.times_out.size(), meshed.times_out.size());
   double worst_x = 0.0, worst_f = 0.0, moved = 0.0;
   for (size_t i = 0; i < placed.times_out.size(); ++i)
@@ -218,3 +216,5 @@ TEST(InitialConditions, BadInputIsRefusedNamingTheKey) {
   });
   EXPECT_NE(no_mesh.find("initial_conditions: the scene has no `mesh`"), std::string::npos) << no_mesh;
 }
+
+}  // namespace alphaflex::testing

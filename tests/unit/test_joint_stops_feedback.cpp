@@ -15,12 +15,9 @@
 #include "alphaflex/model/model.hpp"
 #include "test_scene_runs.hpp"
 
-using namespace alphaflex;
-using namespace alphaflex::testing;
-
+namespace alphaflex::testing {
 namespace {
 
-double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
 Eigen::Vector3d random3(std::mt19937& rng) { return {uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)}; }
 
 /// q ∘ exp(d) on a node list of frames (7/6) and scalars (1/1).
@@ -40,7 +37,7 @@ Eigen::VectorXd retract_nodes(const std::vector<bool>& frame, const Eigen::Vecto
 }
 
 /// K (on the group) and C of `e` against central differences (h = 1e-6); worst relative error.
-double check_tangents(const Element& e, const LocalState& s, const std::vector<bool>& frame) {
+double check_stop_tangents(const Element& e, const LocalState& s, const std::vector<bool>& frame) {
   const LocalResidual t = element_tangents(e, s);
   const Eigen::Index n = s.v.size();
   Eigen::MatrixXd K(t.r.size(), n), C(t.r.size(), n);
@@ -63,17 +60,17 @@ double check_tangents(const Element& e, const LocalState& s, const std::vector<b
   return std::max(ek, ec);
 }
 
-constexpr const char* kBadSceneHead =
+constexpr const char* kJointSceneHead =
     "name: bad\ndimension: 3\nsolver: {h: 0.01, t_end: 0.02}\n"
     "bodies:\n  - {name: b, type: rigid_body, mass: 1, inertia: [1, 1, 1], position: [0, 0, 1]}\n"
     "joints:\n  - {name: hinge, type: revolute, body1: b, location: [0, 0, 0], axis: [0, 0, 1]}\n"
     "  - {name: cross, type: universal, body1: b, location: [0, 0, 1], axis: [1, 0, 0], axis2: [0, 1, 0]}\n"
     "  - {name: ball, type: spherical, body1: b, location: [0, 0, 1]}\n";
 
-void expect_input_errors(const std::vector<std::pair<std::string, std::string>>& cases) {
+void expect_joint_input_errors(const std::vector<std::pair<std::string, std::string>>& cases) {
   for (const auto& [tail, expected] : cases) {
     SCOPED_TRACE(tail);
-    const std::string msg = input_error_of([&, &tail = tail] { read_scene_text(kBadSceneHead + tail, "bad.yaml"); });
+    const std::string msg = input_error_of([&, &tail = tail] { read_scene_text(kJointSceneHead + tail, "bad.yaml"); });
     EXPECT_NE(msg.find(expected), std::string::npos) << msg;
   }
 }
@@ -90,7 +87,7 @@ TEST(JointStop, PenaltyActsOnlyBeyondItsLimitsWithExactOneSidedTangents) {
     const double v = s.v[0];
     const double expected = psi > 0.5 ? 1.0e4 * (psi - 0.5) + 20.0 * v : psi < -0.3 ? 1.0e4 * (psi + 0.3) + 20.0 * v : 0.0;
     EXPECT_NEAR(element_residual(stop, s)[0], expected, 1e-9);
-    if (expected != 0.0) check_tangents(stop, s, {false});
+    if (expected != 0.0) check_stop_tangents(stop, s, {false});
     else EXPECT_EQ(element_tangents(stop, s).K(0, 0), 0.0);
     // Energy ½ k δ² and the force on the coordinate (−r) as outputs.
     Eigen::VectorXd out;
@@ -240,7 +237,7 @@ TEST(UniversalJointCoordinates, PendulumOnSpringsAboutBothAxesOscillatesAtTheClo
 }
 
 TEST(UniversalJointCoordinates, BadCoordinatesAndJointsWithoutACoordinateAreRefusedByName) {
-  expect_input_errors({
+  expect_joint_input_errors({
       {"forces:\n  - {name: k, type: joint_spring_damper, joint: cross, stiffness: 1}\n",
        "forces[k].coordinate: missing (required for a universal joint): 1 (the angle about axis) or 2 (the angle about axis2)"},
       {"forces:\n  - {name: k, type: joint_spring_damper, joint: cross, coordinate: 3, stiffness: 1}\n",
@@ -356,7 +353,7 @@ TEST(SensorFeedback, TangentsThroughEverySensorKindMatchFiniteDifferences) {
       LocalState s = local_state(q, v, Eigen::VectorXd::Zero(v.size()));
       s.t = 0.3;
       s.load_factor = 0.8;
-      worst = std::max(worst, check_tangents(*e, s, frame));
+      worst = std::max(worst, check_stop_tangents(*e, s, frame));
       ++checked;
     }
   }
@@ -365,7 +362,7 @@ TEST(SensorFeedback, TangentsThroughEverySensorKindMatchFiniteDifferences) {
 }
 
 TEST(SensorFeedback, UnknownSensorsLoopsAndSensorsWithoutDerivativesAreRefusedByTheirKey) {
-  expect_input_errors({
+  expect_joint_input_errors({
       {"forces:\n  - {name: m, type: joint_motor, joint: hinge, torque: \"-4*th\"}\n",
        "forces[m].torque: unknown name 'th': no variable (angle, speed, t), parameter or sensor of that name (sensors: none)"},
       {"sensors:\n  - {name: a, type: expression, value: \"b + 1\"}\n  - {name: b, type: expression, value: \"2*c\"}\n"
@@ -383,6 +380,8 @@ TEST(SensorFeedback, UnknownSensorsLoopsAndSensorsWithoutDerivativesAreRefusedBy
        "forces[m].torque: uses 5 variables and sensors (a, b, c, speed, angle); an expression may use at most 4"},
   });
   // An integral breaks a loop: its value is a state.
-  EXPECT_NO_THROW(read_scene_text(std::string(kBadSceneHead) + "sensors:\n  - {name: i, type: integral, of: \"-e\"}\n"
+  EXPECT_NO_THROW(read_scene_text(std::string(kJointSceneHead) + "sensors:\n  - {name: i, type: integral, of: \"-e\"}\n"
                                   "  - {name: e, type: expression, value: \"i + t\"}\n", "ok.yaml"));
 }
+
+}  // namespace alphaflex::testing

@@ -22,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string mesh_path(const std::string& name) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/meshes/" + name; }
+using testing::mesh_path;
 
 /// A directory of its own per test (tests may run in parallel processes), removed at the end.
 struct TempDir : testing::TestOutputDir {
@@ -521,3 +521,5 @@ TEST(MeshErrors, UnsupportedElementType) {
 
 }  // namespace
 }  // namespace alphaflex
+
+#undef EXPECT_HAS  // a unity batch's next file must not see it

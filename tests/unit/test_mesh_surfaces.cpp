@@ -21,14 +21,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string mesh_path(const std::string& name) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/meshes/" + name; }
+using testing::mesh_path;
 
 std::string write_temp(const std::string& name, const std::string& text) {
   static const testing::TestOutputDir dir("surf");  // removed at exit
   return dir.write(name, text);
 }
 
-std::string error_of(const std::string& path) {
+std::string surface_error_of(const std::string& path) {
   try {
     read_mesh(path, {}, "ctx");
   } catch (const InputError& e) {
@@ -187,7 +187,7 @@ $Elements
 4 7 2 1 8
 $EndElements
 )";
-  const std::string e = error_of(write_temp("moebius.msh", msh));
+  const std::string e = surface_error_of(write_temp("moebius.msh", msh));
   EXPECT_NE(e.find("physical group 'band' (dimension 2) cannot be oriented consistently"), std::string::npos) << e;
   EXPECT_NE(e.find("Moebius"), std::string::npos) << e;
 }
@@ -200,7 +200,7 @@ Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};
 Physical Surface("plate") = {1};
 Mesh.ElementOrder = 2;
 )");
-  const std::string e = error_of(geo);
+  const std::string e = surface_error_of(geo);
   EXPECT_NE(e.find("physical group 'plate' (dimension 2) holds element"), std::string::npos) << e;
   EXPECT_NE(e.find("expected 3-node triangles (type 2) or 4-node quadrangles (type 3)"), std::string::npos) << e;
   EXPECT_EQ(e.rfind("ctx: mesh '", 0), 0u) << e;

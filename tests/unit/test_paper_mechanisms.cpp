@@ -14,7 +14,6 @@ namespace {
 
 const char* kSlider = "slider_crank";
 
-std::vector<std::string> with(std::initializer_list<std::string> l) { return l; }
 std::string h_is(double h) {
   std::ostringstream os;
   os.precision(17);

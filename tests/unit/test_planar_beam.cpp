@@ -38,11 +38,11 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
+using testing::relative_error;
+using testing::uniform;
 
 // ------------------------------------------------------------------ helpers
-
-double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
 
 Vector2d direction(double angle) { return Vector2d(std::cos(angle), std::sin(angle)); }
 
@@ -52,7 +52,7 @@ VectorXd local_q(const Vector3d& a, const Vector3d& b) {
   return q;
 }
 
-LocalState state(const VectorXd& q, const VectorXd& v = VectorXd::Zero(6), const VectorXd& qdd = VectorXd::Zero(6)) {
+LocalState planar_state(const VectorXd& q, const VectorXd& v = VectorXd::Zero(6), const VectorXd& qdd = VectorXd::Zero(6)) {
   return testing::local_state(q, v, qdd);
 }
 
@@ -62,11 +62,9 @@ using testing::element_tangents;
 /// Central differences of r with respect to q, q̇ or q̈ (vector spaces; test_support.hpp's step
 /// rule h = 1e-6 max(1, |x_j|)).
 using testing::Wrt;
-MatrixXd central_differences(const Element& e, const LocalState& s, Wrt wrt) {
+MatrixXd planar_central_differences(const Element& e, const LocalState& s, Wrt wrt) {
   return testing::central_differences(testing::element_residual_of(e, s, wrt), testing::variable(s, wrt));
 }
-
-double relative_error(const MatrixXd& exact, const MatrixXd& approx) { return (approx - exact).norm() / exact.norm(); }
 
 /// Stiffnesses and inertias all of order one, so that a relative matrix error measures every term
 /// (with steel's EA/EI ~ 1e5 an error in bending would hide).
@@ -78,13 +76,13 @@ Vector3d p_stiffness(const Props& p) { return Vector3d(p.EA, p.GA, p.EI); }
 
 /// A beam from A = (x_a, θ_a) along `angle` with length L whose end sections turn by `turn`
 /// (a reference arc; 0: straight). The node angles are random (offsets φ_i ≠ 0).
-struct Specimen {
+struct PlanarSpecimen {
   Vector3d a, b;
   double sec_a, sec_b;
   PlanarBeam beam;
 };
 
-Specimen specimen(std::mt19937& rng, const Props& p, double L, double turn,
+PlanarSpecimen planar_specimen(std::mt19937& rng, const Props& p, double L, double turn,
                   const Vector2d& gravity = Vector2d::Zero()) {
   const double sec_a = uniform(rng, -kPi, kPi), sec_b = sec_a + turn;
   // Chord of an arc of length L turning by `turn`: length L sinc(turn/2), at turn/2 from section A.
@@ -92,7 +90,7 @@ Specimen specimen(std::mt19937& rng, const Props& p, double L, double turn,
   const Vector2d xa(uniform(rng, -1, 1), uniform(rng, -1, 1));
   const Vector2d xb = xa + chord * direction(sec_a + 0.5 * turn);
   const Vector3d a(xa.x(), xa.y(), uniform(rng, -kPi, kPi)), b(xb.x(), xb.y(), uniform(rng, -kPi, kPi));
-  return Specimen{a, b, sec_a, sec_b,
+  return PlanarSpecimen{a, b, sec_a, sec_b,
                   PlanarBeam("beam", 0, 1, p.EA, p.GA, p.EI, p.rhoA, p.rhoI, a, b, sec_a, sec_b, gravity)};
 }
 
@@ -144,7 +142,7 @@ void energy_derivatives(const PlanarBeam& beam, const VectorXd& q, double& W, Ve
 }
 
 /// The elastic residual alone (no inertia, no gravity: q̈ = 0, g = 0 in the specimens using it).
-VectorXd elastic_residual(const PlanarBeam& beam, const VectorXd& q) { return element_residual(beam, state(q)); }
+VectorXd elastic_residual(const PlanarBeam& beam, const VectorXd& q) { return element_residual(beam, planar_state(q)); }
 
 // ------------------------------------------------------------------ tangents
 
@@ -158,16 +156,16 @@ TEST(PlanarBeamTangents, MatchCentralDifferencesAtRandomDeformedStates) {
   std::mt19937 rng(7);
   const Props p;
   const double L = 0.8;
-  std::vector<Specimen> beams;
-  beams.push_back(specimen(rng, p, L, 0.0, Vector2d(0.0, -9.81)));
-  beams.push_back(specimen(rng, p, L, 0.9, Vector2d(1.5, -9.81)));
-  beams.push_back(specimen(rng, p, L, -2.5, Vector2d(0.0, -9.81)));
+  std::vector<PlanarSpecimen> beams;
+  beams.push_back(planar_specimen(rng, p, L, 0.0, Vector2d(0.0, -9.81)));
+  beams.push_back(planar_specimen(rng, p, L, 0.9, Vector2d(1.5, -9.81)));
+  beams.push_back(planar_specimen(rng, p, L, -2.5, Vector2d(0.0, -9.81)));
   double worst_K = 0.0, worst_C = 0.0, worst_M = 0.0, mutation_K = 1e300, largest_turn = 0.0;
   int checked = 0;
-  for (const Specimen& sp : beams) {
+  for (const PlanarSpecimen& sp : beams) {
     const VectorXd q_ref = local_q(sp.a, sp.b);
     for (int sample = 0; sample < 10; ++sample) {
-      LocalState s = state(q_ref);
+      LocalState s = planar_state(q_ref);
       s.load_factor = 0.7;
       if (sample > 0) {
         s.q = deformed_and_moved(rng, q_ref, L);
@@ -178,9 +176,9 @@ TEST(PlanarBeamTangents, MatchCentralDifferencesAtRandomDeformedStates) {
       largest_turn = std::max(largest_turn, std::abs(turn));
       const LocalResidual t = element_tangents(sp.beam, s);
       ASSERT_LE((t.r - element_residual(sp.beam, s)).norm(), 1e-14 * t.r.norm());
-      const MatrixXd Kfd = central_differences(sp.beam, s, Wrt::q);
-      const MatrixXd Cfd = central_differences(sp.beam, s, Wrt::v);
-      const MatrixXd Mfd = central_differences(sp.beam, s, Wrt::qdd);
+      const MatrixXd Kfd = planar_central_differences(sp.beam, s, Wrt::q);
+      const MatrixXd Cfd = planar_central_differences(sp.beam, s, Wrt::v);
+      const MatrixXd Mfd = planar_central_differences(sp.beam, s, Wrt::qdd);
       const double eK = relative_error(Kfd, t.K), eM = relative_error(Mfd, t.M);
       const double eC = Cfd.norm() / t.K.norm();  // C = 0 exactly: compared on the scale of K
       EXPECT_LE(eK, 1e-6) << "sample " << sample << ", turn " << turn;
@@ -226,10 +224,10 @@ TEST(PlanarBeamTangents, EqualAutomaticDifferentiationOfTheEnergyAcrossTheSeries
     VectorXd grad;
     MatrixXd hess;
     energy_derivatives(beam, q, W, grad, hess);
-    const LocalResidual t = element_tangents(beam, state(q));
+    const LocalResidual t = element_tangents(beam, planar_state(q));
     EXPECT_NEAR(W, beam.elastic_energy(q), 1e-15 * W);
     const double er = (t.r - grad).norm() / grad.norm(), eK = relative_error(hess, t.K);
-    const double efd = relative_error(central_differences(beam, state(q), Wrt::q), t.K);
+    const double efd = relative_error(planar_central_differences(beam, planar_state(q), Wrt::q), t.K);
     EXPECT_LE(er, 1e-13) << "turn " << turn;
     EXPECT_LE(eK, 1e-13) << "turn " << turn;
     EXPECT_LE(efd, 1e-6) << "turn " << turn;
@@ -266,7 +264,7 @@ TEST(PlanarBeamStrain, RigidMotionGivesZeroStrainAndForceAndIsObjective) {
   const Props p;
   double worst_rigid = 0.0, worst_obj = 0.0;
   for (double ref_turn : {0.0, 0.7, -2.0}) {
-    const Specimen sp = specimen(rng, p, 1.1, ref_turn);
+    const PlanarSpecimen sp = planar_specimen(rng, p, 1.1, ref_turn);
     const VectorXd q_ref = local_q(sp.a, sp.b);
     const double fscale = p.EA;  // force scale of a unit strain
     for (double beta : {0.0, 0.3, -1.0, kPi, 4.0, -7.5, 50.0}) {
@@ -285,7 +283,7 @@ TEST(PlanarBeamStrain, RigidMotionGivesZeroStrainAndForceAndIsObjective) {
       const VectorXd qm = moved(q, beta, Vector2d(uniform(rng, -3, 3), uniform(rng, -3, 3)));
       const Vector3d e = sp.beam.strain(q), em = sp.beam.strain(qm);
       ASSERT_GT(e.norm(), 1e-2);
-      const LocalResidual t = element_tangents(sp.beam, state(q)), tm = element_tangents(sp.beam, state(qm));
+      const LocalResidual t = element_tangents(sp.beam, planar_state(q)), tm = element_tangents(sp.beam, planar_state(qm));
       MatrixXd P = MatrixXd::Identity(6, 6);
       const Eigen::Matrix2d R = Eigen::Rotation2Dd(beta).toRotationMatrix();
       P.block<2, 2>(0, 0) = R;
@@ -357,7 +355,7 @@ TEST(PlanarBeamStrain, CircularArcWithTangentSectionsIsExactForAnyElementLength)
         if (L >= 1e-3)
           worst = std::max({worst, std::abs(e[0] - expected[0]), std::abs(e[1]), std::abs(e[2] - expected[2]) * rho});
         VectorXd out;
-        beam.output(state(q), out);
+        beam.output(planar_state(q), out);
         EXPECT_NEAR(out[2], p.EI * expected[2], p.EI * tol_curv);
       }
     }
@@ -391,7 +389,7 @@ TEST(PlanarBeamPatch, UniformStretchGivesNEqualsEAEpsilonAndBalancedNodes) {
                           psi, psi, Vector2d::Zero());
     const VectorXd q = local_q(def[k], def[k + 1]);
     VectorXd out;
-    beam.output(state(q), out);
+    beam.output(planar_state(q), out);
     EXPECT_NEAR(out[0], p.EA * e0, 1e-13 * p.EA) << "element " << k;
     EXPECT_NEAR(out[1], 0.0, 1e-13 * p.EA);
     EXPECT_NEAR(out[2], 0.0, 1e-13 * p.EA);
@@ -439,7 +437,7 @@ TEST(PlanarBeamCantilever, HasNoShearLockingAndConvergesAsNToMinusTwo) {
     for (int e = 0; e < n; ++e) {
       const PlanarBeam beam("b", e, e + 1, EA, GA, EI, rho * A, rho * I, nodes[e], nodes[e + 1], psi, psi,
                             Vector2d(0.0, -9.81));
-      K.block(3 * e, 3 * e, 6, 6) += element_tangents(beam, state(local_q(nodes[e], nodes[e + 1]))).K;
+      K.block(3 * e, 3 * e, 6, 6) += element_tangents(beam, planar_state(local_q(nodes[e], nodes[e + 1]))).K;
     }
     const MatrixXd Kr = K.bottomRightCorner(N - 3, N - 3);
     VectorXd f = VectorXd::Zero(N - 3);
@@ -491,7 +489,7 @@ TEST(PlanarBeamRollUp, EndMomentBendsTheCantileverIntoAnExactCircle) {
       VectorXd R = VectorXd::Zero(N);
       MatrixXd K = MatrixXd::Zero(N, N);
       for (int e = 0; e < n; ++e) {
-        const LocalResidual t = element_tangents(beams[static_cast<size_t>(e)], state(q.segment<6>(3 * e)));
+        const LocalResidual t = element_tangents(beams[static_cast<size_t>(e)], planar_state(q.segment<6>(3 * e)));
         R.segment<6>(3 * e) += t.r;
         K.block<6, 6>(3 * e, 3 * e) += t.K;
       }
@@ -537,7 +535,7 @@ TEST(PlanarBeamSpatialBeam, SameStrainEnergyResidualAndTangentsInThePlane) {
   double worst = 0.0;
   for (double turn : {0.0, 0.8, -2.2}) {
     const Vector2d g(0.7, -9.81);
-    const Specimen sp = specimen(rng, p, 0.9, turn, g);
+    const PlanarSpecimen sp = planar_specimen(rng, p, 0.9, turn, g);
     const GeometricallyExactBeam spatial("s", 0, 1, sec, pose(sp.a), pose(sp.b), Rz(sp.sec_a), Rz(sp.sec_b),
                                          Vector3d(g.x(), g.y(), 0.0));
     EXPECT_NEAR(spatial.reference_length(), sp.beam.reference_length(), 1e-14);
@@ -547,7 +545,7 @@ TEST(PlanarBeamSpatialBeam, SameStrainEnergyResidualAndTangentsInThePlane) {
         for (int k = 0; k < 2; ++k) dq.segment<3>(3 * k) = small_deformation(rng);
       const VectorXd q = moved(local_q(sp.a, sp.b) + dq, uniform(rng, -1.0, 1.0), Vector2d(uniform(rng, -1, 1), 0.3));
       if (std::abs(q[5] + sp.beam.section_offset(1) - q[2] - sp.beam.section_offset(0)) >= kPi - 0.1) continue;
-      LocalState s = state(q, VectorXd::Random(6), VectorXd::Random(6));
+      LocalState s = planar_state(q, VectorXd::Random(6), VectorXd::Random(6));
       s.load_factor = 0.6;
       LocalState s3;
       s3.q.resize(14);
@@ -603,9 +601,9 @@ TEST(PlanarBeamInertia, ConsistentMassAndHalfTheWeightOnEachNodeTimesTheLoadFact
   std::mt19937 rng(29);
   const Props p;
   const Vector2d g(0.5, -9.81);
-  const Specimen sp = specimen(rng, p, 1.3, 0.4, g);
+  const PlanarSpecimen sp = planar_specimen(rng, p, 1.3, 0.4, g);
   const double L0 = sp.beam.reference_length();
-  LocalState s = state(local_q(sp.a, sp.b), VectorXd::Random(6), VectorXd::Random(6));
+  LocalState s = planar_state(local_q(sp.a, sp.b), VectorXd::Random(6), VectorXd::Random(6));
   s.load_factor = 0.25;
   const LocalResidual t = element_tangents(sp.beam, s);
   MatrixXd M = MatrixXd::Zero(6, 6);
@@ -638,7 +636,7 @@ TEST(PlanarBeamOutput, NamesAndValuesAreSectionForcesThenStrains) {
   EXPECT_EQ(beam.output_names(), names);
   const VectorXd q = local_q(Vector3d(0.1, 0.05, 0.3), Vector3d(2.2, 0.3, 0.1));
   VectorXd out;
-  beam.output(state(q), out);
+  beam.output(planar_state(q), out);
   ASSERT_EQ(out.size(), 6);
   const Vector3d e = beam.strain(q);
   for (int k = 0; k < 3; ++k) {
@@ -693,7 +691,7 @@ TEST(PlanarBeamDamping, TangentsMatchCentralDifferencesAndTheDissipationIsEtaEps
   const double L = 0.8, eta = 0.3;
   double worst_K = 0.0, worst_C = 0.0, mutation_K = 1e300, mutation_C = 1e300;
   for (double turn : {0.0, 0.9, -2.5}) {
-    const Specimen sp = specimen(rng, p, L, turn);
+    const PlanarSpecimen sp = planar_specimen(rng, p, L, turn);
     const PlanarBeam damped("damped", 0, 1, p.EA, p.GA, p.EI, p.rhoA, p.rhoI, sp.a, sp.b, sp.sec_a, sp.sec_b,
                             Vector2d(0.0, -9.81), eta);
     const PlanarBeam elastic("elastic", 0, 1, p.EA, p.GA, p.EI, p.rhoA, p.rhoI, sp.a, sp.b, sp.sec_a, sp.sec_b,
@@ -702,7 +700,7 @@ TEST(PlanarBeamDamping, TangentsMatchCentralDifferencesAndTheDissipationIsEtaEps
                            Vector2d(0.0, -9.81));
     const VectorXd q_ref = local_q(sp.a, sp.b);
     for (int sample = 0; sample < 6; ++sample) {
-      LocalState s = state(q_ref);
+      LocalState s = planar_state(q_ref);
       if (sample > 0) {
         s.q = deformed_and_moved(rng, q_ref, L);
       }
@@ -710,11 +708,11 @@ TEST(PlanarBeamDamping, TangentsMatchCentralDifferencesAndTheDissipationIsEtaEps
       s.qdd = VectorXd::Random(6) * 5.0;
       const LocalResidual t = element_tangents(damped, s);
       ASSERT_LE((t.r - element_residual(damped, s)).norm(), 1e-14 * t.r.norm());
-      const MatrixXd Kfd = central_differences(damped, s, Wrt::q), Cfd = central_differences(damped, s, Wrt::v);
+      const MatrixXd Kfd = planar_central_differences(damped, s, Wrt::q), Cfd = planar_central_differences(damped, s, Wrt::v);
       const double eK = relative_error(Kfd, t.K), eC = relative_error(Cfd, t.C);
       EXPECT_LE(eK, 1e-6) << "sample " << sample;
       EXPECT_LE(eC, 1e-6) << "sample " << sample;
-      EXPECT_LE(relative_error(central_differences(damped, s, Wrt::qdd), t.M), 1e-6);
+      EXPECT_LE(relative_error(planar_central_differences(damped, s, Wrt::qdd), t.M), 1e-6);
       const LocalResidual te = element_tangents(elastic, s), tp = element_tangents(plain, s);
       EXPECT_EQ(te.r, tp.r);  // η = 0 is the elastic element, bit for bit
       EXPECT_EQ(te.K, tp.K);

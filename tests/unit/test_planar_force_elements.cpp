@@ -6,9 +6,7 @@
 #include "alphaflex/elements/planar_coordinate_force.hpp"
 #include "test_scene_runs.hpp"
 
-using namespace alphaflex;
-using namespace alphaflex::testing;
-
+namespace alphaflex::testing {
 namespace {
 
 using Geometry = PlanarCoordinateForce::Geometry;
@@ -223,3 +221,5 @@ TEST(PlanarForceElements, BadInputIsRefusedNamingTheKey) {
     EXPECT_NE(msg.find(expected), std::string::npos) << "got: " << msg << "\nexpected: " << expected;
   }
 }
+
+}  // namespace alphaflex::testing

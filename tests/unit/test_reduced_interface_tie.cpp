@@ -25,15 +25,10 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 using testing::central_differences;
 using testing::input_error_of;
+using testing::random_vector;
 using testing::retracted_frames;
 
-double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-VectorXd random_vector(std::mt19937& rng, int n, double a, double b) {
-  VectorXd x(n);
-  for (int i = 0; i < n; ++i) x[i] = uniform(rng, a, b);
-  return x;
-}
-Matrix3d random_rotation(std::mt19937& rng) { return exp_so3<double>(Vector3d(random_vector(rng, 3, -1.5, 1.5))); }
+Matrix3d tie_random_rotation(std::mt19937& rng) { return exp_so3<double>(Vector3d(random_vector(rng, 3, -1.5, 1.5))); }
 
 /// q ∘ exp(d) for the tie's local configuration: two frames (7 numbers, 6 increments each), then the
 /// amplitudes (additive).
@@ -55,10 +50,10 @@ TieAtRandomState random_tie_state(std::mt19937& rng, int m) {
   std::vector<int> amplitudes;
   for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
   const MatrixXd shape = random_vector(rng, 6 * m, -0.6, 0.6).reshaped(6, m);
-  const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), random_rotation(rng), shape);
+  const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), tie_random_rotation(rng), shape);
   VectorXd q(14 + m);
-  store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data());
-  store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data() + 7);
+  store_pose(random_vector(rng, 3, -1, 1), tie_random_rotation(rng), q.data());
+  store_pose(random_vector(rng, 3, -1, 1), tie_random_rotation(rng), q.data() + 7);
   q.tail(m) = random_vector(rng, m, -0.6, 0.6);
   return {shape, tie, q};
 }
@@ -83,11 +78,11 @@ TEST(ReducedInterfaceTie, JacobianGeometricStiffnessAndAccelerationTermMatchFini
       SCOPED_TRACE("m = " + std::to_string(m) + ", trial " + std::to_string(trial));
       std::vector<int> amplitudes;
       for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
-      const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), random_rotation(rng),
+      const ReducedInterfaceTie tie("t", 0, 1, amplitudes, random_vector(rng, 3, -0.5, 0.5), tie_random_rotation(rng),
                                     MatrixXd(random_vector(rng, 6 * m, -0.4, 0.4).reshaped(6, m)));
       VectorXd q(14 + m);
-      store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data());
-      store_pose(random_vector(rng, 3, -1, 1), random_rotation(rng), q.data() + 7);
+      store_pose(random_vector(rng, 3, -1, 1), tie_random_rotation(rng), q.data());
+      store_pose(random_vector(rng, 3, -1, 1), tie_random_rotation(rng), q.data() + 7);
       q.tail(m) = random_vector(rng, m, -0.5, 0.5);
       const VectorXd lambda = random_vector(rng, 6, -5.0, 5.0), v = random_vector(rng, 12 + m, -2.0, 2.0);
       const double t = 0.4;
@@ -282,7 +277,7 @@ TEST(ReducedInterfaceTie, IsExactAtACraigBamptonInterfaceNode) {
   for (int i = 0; i < m; ++i) amplitudes.push_back(2 + i);
   const ReducedInterfaceTie tie("t", 0, 1, amplitudes, rb.positions[a], rb.rotations[a], rb.shapes[a]);
   const Vector3d xf = random_vector(rng, 3, -1, 1);
-  const Matrix3d Rf = random_rotation(rng);
+  const Matrix3d Rf = tie_random_rotation(rng);
   rb.node_pose(a, xf, Rf, xi, x, R);
   VectorXd q(14 + m);
   store_pose(x, R, q.data());

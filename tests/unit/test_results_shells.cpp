@@ -28,8 +28,7 @@
 #include "alphaflex/study/strain_energy.hpp"
 #include "test_support.hpp"
 
-using namespace alphaflex;
-
+namespace alphaflex {
 namespace {
 
 /// A dataset of the file as doubles (any shape, row-major); empty if it does not exist.
@@ -436,3 +435,5 @@ TEST(ResultsLayout, BodiesGridHoldsBodiesAndElasticDisplacementRemovesTheRigidMo
   EXPECT_GT(std::fabs(disp[3 * 5 + 2]), 1.0);
   H5Fclose(f);
 }
+
+}  // namespace alphaflex

@@ -14,12 +14,12 @@
 
 #include "alphaflex/core/autodiff.hpp"
 #include "alphaflex/core/rotation.hpp"
+#include "test_support.hpp"
 
-using namespace alphaflex;
-
+namespace alphaflex {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 constexpr double kEps = 2.220446049250313e-16;  // DBL_EPSILON
 
 /// Angles that exercise both branches of every coefficient: 0, far below / just below / just above
@@ -107,7 +107,7 @@ Eigen::Matrix3d values(const Mat3<AD1>& m) {
   return v;
 }
 
-void report(const char* what, double worst) { std::printf("[ worst    ] %.2e  %s\n", worst, what); }
+void rotation_report(const char* what, double worst) { std::printf("[ worst    ] %.2e  %s\n", worst, what); }
 
 }  // namespace
 
@@ -142,8 +142,8 @@ TEST(RotationExp, ExpEqualsRodriguesReferenceAndAngleAxisInBothBranches) {
       EXPECT_LE(e_aa, 8 * kEps) << "θ = " << th;
     }
   }
-  report("exp(w) vs long-double Rodrigues", worst_ref);
-  report("exp(w) vs Eigen::AngleAxis", worst_aa);
+  rotation_report("exp(w) vs long-double Rodrigues", worst_ref);
+  rotation_report("exp(w) vs Eigen::AngleAxis", worst_aa);
 }
 
 TEST(RotationExp, ExpIsOrthogonalWithUnitDeterminant) {
@@ -162,7 +162,7 @@ TEST(RotationExp, ExpIsOrthogonalWithUnitDeterminant) {
       EXPECT_LE(e_det, 8 * kEps) << "θ = " << th;
     }
   }
-  report("|RᵀR − I|, |det R − 1|", worst);
+  rotation_report("|RᵀR − I|, |det R − 1|", worst);
 }
 
 // =================================================================== log ∘ exp, exp ∘ log
@@ -184,7 +184,7 @@ TEST(RotationExpLog, LogOfExpIsIdentityForAnglesUpToPi) {
       EXPECT_LE(e, 16 * kEps) << "θ = " << th << ": log(exp(w)) = " << l.transpose() << ", w = " << w.transpose();
     }
   }
-  report("|log(exp(w)) − w| / |w|", worst);
+  rotation_report("|log(exp(w)) − w| / |w|", worst);
 }
 
 TEST(RotationExpLog, LogAtExactlyPiGivesAnAxisOfLengthPiEitherSign) {
@@ -227,7 +227,7 @@ TEST(RotationExpLog, ExpOfLogIsIdentityForRandomRotations) {
     worst = std::max(worst, e);
     EXPECT_LE(e, 8 * kEps) << "R =\n" << R << "\nlog R = " << l.transpose();
   }
-  report("|exp(log R) − R|", worst);
+  rotation_report("|exp(log R) − R|", worst);
 }
 
 TEST(RotationExpLog, JacobianOfLogOfExpIsTheIdentityViaAD) {
@@ -249,7 +249,7 @@ TEST(RotationExpLog, JacobianOfLogOfExpIsTheIdentityViaAD) {
       EXPECT_LE(e, tol) << "θ = " << th << "\n" << J;
     }
   }
-  report("|∂log(exp(w))/∂w − I| (× min(1, π − θ))", worst);
+  rotation_report("|∂log(exp(w))/∂w − I| (× min(1, π − θ))", worst);
 }
 
 // =================================================================== T and T⁻¹
@@ -270,7 +270,7 @@ TEST(RotationTangent, TangentEqualsLongDoubleReferenceInBothBranches) {
       EXPECT_LE(e, 8 * kEps) << "θ = " << th;
     }
   }
-  report("T(w) vs long-double reference", worst);
+  rotation_report("T(w) vs long-double reference", worst);
 }
 
 TEST(RotationTangent, TangentMatchesCentralDifferencesOfExpInBothBranches) {
@@ -288,7 +288,7 @@ TEST(RotationTangent, TangentMatchesCentralDifferencesOfExpInBothBranches) {
       EXPECT_LE(e, 1e-6) << "θ = " << th << "\nFD:\n" << fd << "\nexp(w)(Tδ)^:\n" << an;
     }
   }
-  report("exp(w)(T(w)δ)^ vs central differences", worst);
+  rotation_report("exp(w)(T(w)δ)^ vs central differences", worst);
 }
 
 TEST(RotationTangent, TangentIsTheExactADDerivativeOfExp) {
@@ -310,7 +310,7 @@ TEST(RotationTangent, TangentIsTheExactADDerivativeOfExp) {
       }
     }
   }
-  report("∂exp/∂w_i (AD) vs exp(w)(T e_i)^", worst);
+  rotation_report("∂exp/∂w_i (AD) vs exp(w)(T e_i)^", worst);
 }
 
 TEST(RotationTangentInverse, InverseTimesTangentIsIdentityInBothBranchesAndNearTwoPi) {
@@ -331,7 +331,7 @@ TEST(RotationTangentInverse, InverseTimesTangentIsIdentityInBothBranchesAndNearT
       EXPECT_LE(e, 8 * kEps) << "θ = " << th << ", ‖T⁻¹‖ = " << Ti.norm();
     }
   }
-  report("|T⁻¹T − I| / (‖T‖‖T⁻¹‖)", worst);
+  rotation_report("|T⁻¹T − I| / (‖T‖‖T⁻¹‖)", worst);
 }
 
 TEST(RotationTangentInverse, InverseAgreesWithLongDoubleInverseOfReferenceTangent) {
@@ -349,7 +349,7 @@ TEST(RotationTangentInverse, InverseAgreesWithLongDoubleInverseOfReferenceTangen
       EXPECT_LE(e, 8 * kEps) << "θ = " << th;
     }
   }
-  report("T⁻¹(w) vs long-double inverse of T_ref", worst);
+  rotation_report("T⁻¹(w) vs long-double inverse of T_ref", worst);
 }
 
 // =================================================================== series threshold
@@ -426,9 +426,9 @@ TEST(RotationSeriesThreshold, ValuesAndFirstAndSecondDerivativesAreContinuousAcr
       check("T⁻¹", [](const Vec3<AD2>& w) { return tangent_so3_inverse<AD2>(w); });
     }
   }
-  report("jump of exp, T, T⁻¹ at the series thresholds", worst[0]);
-  report("jump of their AD first derivatives", worst[1]);
-  report("jump of their AD second derivatives", worst[2]);
+  rotation_report("jump of exp, T, T⁻¹ at the series thresholds", worst[0]);
+  rotation_report("jump of their AD first derivatives", worst[1]);
+  rotation_report("jump of their AD second derivatives", worst[2]);
   // log's series is in σ² = sin²θ with its own switch at σ² = 1e-4: values and first derivatives
   // of log(exp(w)) are continuous there.
   double worst_v = 0.0, worst_d = 0.0;
@@ -454,8 +454,8 @@ TEST(RotationSeriesThreshold, ValuesAndFirstAndSecondDerivativesAreContinuousAcr
       }
     }
   }
-  report("jump of log(exp(w)) at sin²θ = 1e-4 (relative to θ)", worst_v / std::asin(1e-2));
-  report("jump of its AD first derivatives", worst_d);
+  rotation_report("jump of log(exp(w)) at sin²θ = 1e-4 (relative to θ)", worst_v / std::asin(1e-2));
+  rotation_report("jump of its AD first derivatives", worst_d);
 }
 
 // =================================================================== AD at exactly w = 0
@@ -530,8 +530,8 @@ TEST(RotationQuaternion, QuaternionExpIsExpSO3AndQuaternionLogIsLogSO3) {
       }
     }
   }
-  report("quaternion_exp vs exp_so3", worst_exp);
-  report("|quaternion_log(quaternion_exp(w)) − w| / |w|", worst_log);
+  rotation_report("quaternion_exp vs exp_so3", worst_exp);
+  rotation_report("|quaternion_log(quaternion_exp(w)) − w| / |w|", worst_log);
 }
 
 TEST(RotationQuaternion, QuaternionLogIsSignInvariantAndReturnsTheShortRotation) {
@@ -591,3 +591,5 @@ TEST(RotationFrameFrom, FrameFromFailsForParallelOrZeroVectors) {
   EXPECT_FALSE(frame_from(e, Eigen::Vector3d::Zero(), R));
   EXPECT_TRUE(frame_from(e, e + 1e-3 * Eigen::Vector3d(1.2, 0.3, 0.0), R));  // nearly, but not, parallel
 }
+
+}  // namespace alphaflex

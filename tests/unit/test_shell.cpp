@@ -20,21 +20,15 @@
 #include "alphaflex/model/node.hpp"
 #include "test_support.hpp"
 
-using namespace alphaflex;
-
+namespace alphaflex {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
+using testing::stored;
+using testing::uniform;
 
-double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-Eigen::Vector3d random3(std::mt19937& rng, double a) {
+Eigen::Vector3d random3_within(std::mt19937& rng, double a) {
   return Eigen::Vector3d(uniform(rng, -a, a), uniform(rng, -a, a), uniform(rng, -a, a));
-}
-
-Eigen::VectorXd stored(const std::vector<Pose<double>>& p) {
-  Eigen::VectorXd q(7 * p.size());
-  for (size_t k = 0; k < p.size(); ++k) store_pose(p[k].x, p[k].R, q.data() + 7 * k);
-  return q;
 }
 
 // Central differences on the group with h = 1e-6 (m, rad), on q̇ and q̈ with h = 1e-6 (test_support.hpp).
@@ -45,7 +39,7 @@ using alphaflex::testing::fixed_fd_step;
 using alphaflex::testing::retracted_frames;
 using alphaflex::testing::Wrt;
 
-double rel(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / std::max(b.norm(), DBL_MIN); }
+double shell_rel(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / std::max(b.norm(), DBL_MIN); }
 
 // A warped quadrilateral and a triangle with nodes whose frames are arbitrary rotations (as if
 // shared with beams), directors tilted from the normal, in a general position in space.
@@ -62,9 +56,9 @@ Sample sample(int n, std::mt19937& rng) {
   for (int I = 0; I < n; ++I) {
     s.nodes.push_back(I);
     const Eigen::Vector3d X(n == 4 ? xy[I][0] : tri[I][0], n == 4 ? xy[I][1] : tri[I][1], n == 4 ? 0.05 * (I % 2) : 0.0);
-    s.ref.push_back({Q * X + Eigen::Vector3d(0.5, -1, 2), exp_so3<double>(random3(rng, 1.5))});
+    s.ref.push_back({Q * X + Eigen::Vector3d(0.5, -1, 2), exp_so3<double>(random3_within(rng, 1.5))});
   }
-  for (int I = 0; I < n; ++I) s.dirs.push_back((Q * (Eigen::Vector3d(0, 0, 1) + random3(rng, 0.15))).normalized());
+  for (int I = 0; I < n; ++I) s.dirs.push_back((Q * (Eigen::Vector3d(0, 0, 1) + random3_within(rng, 0.15))).normalized());
   return s;
 }
 
@@ -74,8 +68,8 @@ ShellSection test_section() { return ShellSection::isotropic(2.1e11, 0.3, 7800, 
 Eigen::VectorXd deformed(const Sample& s, std::mt19937& rng, double amp) {
   std::vector<Pose<double>> p = s.ref;
   for (auto& pose : p) {
-    pose.x += random3(rng, amp);
-    pose.R = pose.R * exp_so3<double>(random3(rng, 3 * amp));
+    pose.x += random3_within(rng, amp);
+    pose.R = pose.R * exp_so3<double>(random3_within(rng, 3 * amp));
   }
   return stored(p);
 }
@@ -96,7 +90,7 @@ std::pair<double, double> elastic_fd_errors(const ReissnerMindlinShell& shell, c
     Eigen::VectorXd rr;
     shell.elastic_forces(x, rr);
     return rr; }, q, fixed_fd_step(1e-6));
-  return {rel(r.transpose(), dW), rel(K, Kfd)};
+  return {shell_rel(r.transpose(), dW), shell_rel(K, Kfd)};
 }
 
 }  // namespace
@@ -160,10 +154,10 @@ TEST(ReissnerMindlinShell, InertiaTangentsMatchFiniteDifferences) {
     const Eigen::MatrixXd Kfd = central_differences_on_frames(element_residual_of(shell, st, Wrt::q), st.q, fixed_fd_step(1e-6));
     const Eigen::MatrixXd Cfd = central_differences(element_residual_of(shell, st, Wrt::v), st.v, fixed_fd_step(1e-6));
     const Eigen::MatrixXd Mfd = central_differences(element_residual_of(shell, st, Wrt::qdd), st.qdd, fixed_fd_step(1e-6));
-    std::printf("[ FD       ] %d nodes: K %.1e, C %.1e, M %.1e\n", n, rel(out.K, Kfd), rel(out.C, Cfd), rel(out.M, Mfd));
-    EXPECT_LT(rel(out.K, Kfd), 1e-6);
-    EXPECT_LT(rel(out.C, Cfd), 1e-6);
-    EXPECT_LT(rel(out.M, Mfd), 1e-6);
+    std::printf("[ FD       ] %d nodes: K %.1e, C %.1e, M %.1e\n", n, shell_rel(out.K, Kfd), shell_rel(out.C, Cfd), shell_rel(out.M, Mfd));
+    EXPECT_LT(shell_rel(out.K, Kfd), 1e-6);
+    EXPECT_LT(shell_rel(out.C, Cfd), 1e-6);
+    EXPECT_LT(shell_rel(out.M, Mfd), 1e-6);
   }
 }
 
@@ -183,7 +177,7 @@ TEST(ShellPressure, FollowerTangentMatchesFiniteDifferencesAndFixedHasNone) {
       out.reset(6 * n, true);
       p.evaluate(st, out, true);
       const Eigen::MatrixXd Kfd = central_differences_on_frames(element_residual_of(p, st, Wrt::q), st.q, fixed_fd_step(1e-6));
-      if (follower) EXPECT_LT(rel(out.K, Kfd), 1e-7);
+      if (follower) EXPECT_LT(shell_rel(out.K, Kfd), 1e-7);
       else EXPECT_LT(Kfd.norm(), 1e-6 * out.r.norm());
     }
   }
@@ -738,3 +732,5 @@ TEST(ReissnerMindlinShell, GravityLoadsAddUpToTheWeight) {
     EXPECT_LT((total - sec.mass * shell.area() * g).norm(), 1e-10 * (sec.mass * shell.area() * g).norm());
   }
 }
+
+}  // namespace alphaflex

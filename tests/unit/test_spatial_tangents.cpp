@@ -25,39 +25,24 @@
 #include "alphaflex/model/node.hpp"
 #include "test_support.hpp"
 
-using namespace alphaflex;
-
+namespace alphaflex {
 namespace {
 
-constexpr double kRelTol = 1e-6;  // FD vs analytic, relative to the quantity's scale
+constexpr double kSpatialRelTol = 1e-6;  // FD vs analytic, relative to the quantity's scale
 constexpr double kFdStep = 1e-6;  // central differences of first derivatives
-constexpr double kEps = DBL_EPSILON;
-constexpr int kSamples = 6;
+constexpr double kSpatialEps = DBL_EPSILON;
+constexpr int kSpatialSamples = 6;
 constexpr double kT = 0.37;  // time of the evaluations
 
 // ------------------------------------------------------------------ configurations on the group
-double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-
-Eigen::VectorXd random_vector(std::mt19937& rng, int n, double a, double b) {
-  Eigen::VectorXd x(n);
-  for (int i = 0; i < n; ++i) x[i] = uniform(rng, a, b);
-  return x;
-}
+// (random samples, random poses, stored poses: test_support.hpp)
+using testing::random_pose;
+using testing::random_vector;
+using testing::stored;
+using testing::uniform;
 
 Eigen::Matrix3d rot(const Eigen::Vector3d& w) { return exp_so3<double>(w); }
 Eigen::Matrix3d rot(int axis, double angle) { return exp_so3<double>(angle * Eigen::Vector3d::Unit(axis)); }
-
-Pose<double> random_pose(std::mt19937& rng) {
-  const Eigen::Vector3d w = random_vector(rng, 3, -1.0, 1.0);
-  return {random_vector(rng, 3, -1.0, 1.0), rot(uniform(rng, 0.0, 3.0) * w.normalized())};
-}
-
-/// The 7 stored numbers of a set of poses.
-Eigen::VectorXd stored(const std::vector<Pose<double>>& poses) {
-  Eigen::VectorXd q(7 * poses.size());
-  for (size_t k = 0; k < poses.size(); ++k) store_pose(poses[k].x, poses[k].R, q.data() + 7 * k);
-  return q;
-}
 
 Pose<double> pose_at(const Eigen::VectorXd& q, int k) { return pose_of(q.data() + 7 * k); }
 
@@ -92,21 +77,15 @@ double discrepancy(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, double sc
   return (A - B).norm() / std::max(scale, DBL_MIN);
 }
 
-const Eigen::IOFormat kFmt(6, 0, " ", "\n", "  [", "]");
+const Eigen::IOFormat kSpatialFmt(6, 0, " ", "\n", "  [", "]");
 
-void report(const std::string& what, const std::string& label, double worst) {
+void spatial_report(const std::string& what, const std::string& label, double worst) {
   std::printf("[ FD       ] worst rel. error %.1e  %s, %s\n", worst, what.c_str(), label.c_str());
 }
 
 // ------------------------------------------------------------------ joint cases
-// Markers with non-trivial offsets and rotations.
-SpatialMarker marker(int slot, const Eigen::Vector3d& p, const Eigen::Vector3d& w) {
-  SpatialMarker m;
-  m.slot = slot;
-  m.position = p;
-  m.rotation = rot(w);
-  return m;
-}
+// Markers with non-trivial offsets and rotations (testing::marker).
+using testing::marker;
 const Eigen::Vector3d kPosA(0.3, -0.2, 0.5), kRotA(0.4, -0.7, 0.2);
 const Eigen::Vector3d kPosB(-0.4, 0.25, 0.1), kRotB(-0.3, 0.5, 0.9);
 const Eigen::Vector3d kGround(1.0, -0.5, 0.8), kRotGround(0.2, 0.3, -0.6);
@@ -114,7 +93,7 @@ const Eigen::Vector3d kGround(1.0, -0.5, 0.8), kRotGround(0.2, 0.3, -0.6);
 const TimeFunctionPtr kAngle = make_sine(0.7, 0.3, 0.4, 0.2);           // rad
 const TimeFunctionPtr kDisplacement = make_sine(0.35, 0.5, -0.2, 0.1);  // m
 
-struct JointCase {
+struct SpatialJointCase {
   std::string label;
   std::shared_ptr<const SpatialJoint> joint;
   int nodes = 1;
@@ -143,7 +122,7 @@ std::shared_ptr<const SpatialJoint> make_joint(const std::string& type, int node
 /// more, once allowed_motion knows its motion) and every driver combination its row takes, between
 /// two nodes, between a node and the ground, with the ground as marker A, and with the markers on
 /// the nodes in the other order.
-std::vector<JointCase> joint_cases() {
+std::vector<SpatialJointCase> joint_cases() {
   struct Drivers {
     const SpatialJointKind* kind;
     bool angle, displacement;
@@ -155,7 +134,7 @@ std::vector<JointCase> joint_cases() {
     if (k.displacement_driver) variants.push_back({&k, false, true});
     if (k.angle_driver && k.displacement_driver) variants.push_back({&k, true, true});
   }
-  std::vector<JointCase> cases;
+  std::vector<SpatialJointCase> cases;
   for (const Drivers& v : variants) {
     std::string name = v.kind->name;
     if (v.angle) name += " + angle driver";
@@ -180,13 +159,13 @@ struct Motion {
 };
 
 /// Number of free parameters of the joint's relative motion (6 − equations).
-int free_parameters(const JointCase& c) { return 6 - c.joint->size(); }
+int free_parameters(const SpatialJointCase& c) { return 6 - c.joint->size(); }
 
 /// The relative motion the joint allows, from its free parameters p (size free_parameters), with
 /// the driven angle and displacement at time t. The drivers prescribe the motion of marker A
 /// relative to marker B (header: a1·(cos φ b2 − sin φ b1) = 0, (p_A − p_B)·b3 − u = 0), so B
 /// relative to A is turned by −φ(t) about a3 and shifted by −u(t) along it.
-Motion allowed_motion(const JointCase& c, const Eigen::VectorXd& p, double t) {
+Motion allowed_motion(const SpatialJointCase& c, const Eigen::VectorXd& p, double t) {
   Motion m;
   int k = 0;
   const auto next = [&]() { return p[k++]; };
@@ -233,7 +212,7 @@ Pose<double> node_from_marker(const SpatialMarker& m, const Pose<double>& P) {
 }
 
 /// A configuration with B = A ∘ M: the node of marker A (if any) at `base`, the other node placed.
-Eigen::VectorXd assembled(const JointCase& c, const Pose<double>& base, const Motion& M) {
+Eigen::VectorXd assembled(const SpatialJointCase& c, const Pose<double>& base, const Motion& M) {
   const SpatialMarker &a = c.joint->marker_a(), &b = c.joint->marker_b();
   std::vector<Pose<double>> nodes(c.nodes, base);
   if (a.slot >= 0 && b.slot >= 0) {
@@ -253,21 +232,21 @@ Eigen::VectorXd assembled(const JointCase& c, const Pose<double>& base, const Mo
 
 /// A random configuration that violates the joint somewhat: assembled, then moved by up to 0.2
 /// in every coordinate of the group.
-Eigen::VectorXd violated(std::mt19937& rng, const JointCase& c) {
+Eigen::VectorXd violated(std::mt19937& rng, const SpatialJointCase& c) {
   const Eigen::VectorXd p = random_vector(rng, free_parameters(c), -1.0, 1.0);
   const Eigen::VectorXd q = assembled(c, random_pose(rng), allowed_motion(c, p, kT));
   return retracted(q, random_vector(rng, 6 * c.nodes, -0.2, 0.2));
 }
 
 // ------------------------------------------------------------------ joint evaluations
-Eigen::VectorXd phi_of(const Constraint& j, const Eigen::VectorXd& q, double t = kT) {
+Eigen::VectorXd spatial_phi_of(const Constraint& j, const Eigen::VectorXd& q, double t = kT) {
   Eigen::VectorXd phi;
   Eigen::MatrixXd phi_q;
   j.evaluate(q, t, phi, phi_q);
   return phi;
 }
 
-Eigen::MatrixXd phi_q_of(const Constraint& j, const Eigen::VectorXd& q, double t = kT) {
+Eigen::MatrixXd spatial_phi_q_of(const Constraint& j, const Eigen::VectorXd& q, double t = kT) {
   Eigen::VectorXd phi;
   Eigen::MatrixXd phi_q;
   j.evaluate(q, t, phi, phi_q);
@@ -279,7 +258,7 @@ Eigen::MatrixXd phi_q_of(const Constraint& j, const Eigen::VectorXd& q, double t
 /// ~ ε/h² ~ 1e-11; a first-derivative step of 1e-6 would leave ε/h² ~ 1e-4).
 Eigen::VectorXd fd_second_along(const Constraint& j, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                 const Eigen::VectorXd& a, double t) {
-  const auto at = [&](double tau) { return phi_of(j, retracted(q, tau * v + 0.5 * tau * tau * a), t + tau); };
+  const auto at = [&](double tau) { return spatial_phi_of(j, retracted(q, tau * v + 0.5 * tau * tau * a), t + tau); };
   const auto second = [&](double h) { return ((at(h) - 2.0 * at(0.0) + at(-h)) / (h * h)).eval(); };
   const double h = 1e-2;
   return (4.0 * second(h / 2) - second(h)) / 3.0;
@@ -309,7 +288,7 @@ TEST(SpatialJoint, EquationCountsAreThoseOfTheHeaderTablePlusOnePerDriver) {
   EXPECT_THROW(make_joint("prismatic", 1, a, b, true, false), std::invalid_argument);
   EXPECT_THROW(make_joint("revolute", 1, a, b, false, true), std::invalid_argument);
   EXPECT_THROW(make_joint("spherical", 1, a, b, true, false), std::invalid_argument);
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     Eigen::VectorXd phi;
     Eigen::MatrixXd phi_q;
     c.joint->evaluate(assembled(c, Pose<double>{Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()}, Motion{}), kT,
@@ -360,7 +339,7 @@ TEST(SpatialJoint, EquationsWithSumsAndCoefficientsHaveExactDerivatives) {
                                                                          : marker(-1, kGround, kRotGround);
       const auto joint = make_joint(skew, nodes, a, b, drivers, drivers);
       ASSERT_EQ(joint->size(), 2 + 2 * drivers);
-      for (int i = 0; i < kSamples; ++i) {
+      for (int i = 0; i < kSpatialSamples; ++i) {
         std::vector<Pose<double>> poses;
         for (int n = 0; n < nodes; ++n) poses.push_back(random_pose(rng));
         const Eigen::VectorXd q = stored(poses);
@@ -374,18 +353,18 @@ TEST(SpatialJoint, EquationsWithSumsAndCoefficientsHaveExactDerivatives) {
           expected[2] = A.R.col(0).dot(std::cos(phi) * B.R.col(1) - std::sin(phi) * B.R.col(0));
           expected[3] = -B.R.col(2).dot(d) - kDisplacement->value(kT);
         }
-        EXPECT_LE((phi_of(*joint, q) - expected).cwiseAbs().maxCoeff(), 1e-14) << phi_of(*joint, q).transpose();
-        const Eigen::MatrixXd phi_q = phi_q_of(*joint, q);
-        const Eigen::MatrixXd fd = fd_on_group([&](const Eigen::VectorXd& x) { return phi_of(*joint, x); }, q);
-        EXPECT_LE(discrepancy(phi_q, fd, phi_q.norm()), kRelTol);
+        EXPECT_LE((spatial_phi_of(*joint, q) - expected).cwiseAbs().maxCoeff(), 1e-14) << spatial_phi_of(*joint, q).transpose();
+        const Eigen::MatrixXd phi_q = spatial_phi_q_of(*joint, q);
+        const Eigen::MatrixXd fd = fd_on_group([&](const Eigen::VectorXd& x) { return spatial_phi_of(*joint, x); }, q);
+        EXPECT_LE(discrepancy(phi_q, fd, phi_q.norm()), kSpatialRelTol);
         const Eigen::VectorXd lambda = random_vector(rng, joint->size(), -2.0, 2.0);
         Eigen::MatrixXd closed, by_ad;
         joint->geometric_stiffness(q, kT, lambda, closed);
         joint->geometric_stiffness_by_ad(q, kT, lambda, by_ad);
         EXPECT_LE((closed - by_ad).cwiseAbs().maxCoeff(), 1e-13 * std::max(1.0, by_ad.cwiseAbs().maxCoeff()));
         const Eigen::MatrixXd kfd =
-            fd_on_group([&](const Eigen::VectorXd& x) { return (phi_q_of(*joint, x).transpose() * lambda).eval(); }, q);
-        EXPECT_LE(discrepancy(closed, kfd, closed.norm()), kRelTol);
+            fd_on_group([&](const Eigen::VectorXd& x) { return (spatial_phi_q_of(*joint, x).transpose() * lambda).eval(); }, q);
+        EXPECT_LE(discrepancy(closed, kfd, closed.norm()), kSpatialRelTol);
       }
     }
 }
@@ -399,7 +378,7 @@ TEST(SpatialJoint, AssembledConfigurationsSatisfyTheJointAndTheJacobianHasFullRa
   // to ~h² = 1e-10) span the null space of Φ_q: the joint allows exactly these motions.
   std::mt19937 rng(100);
   double worst_phi = 0.0, worst_null = 0.0, worst_cond = 0.0;
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     SCOPED_TRACE(c.label);
     const int m = c.joint->size(), n = 6 * c.nodes, nfree = free_parameters(c);
     const int nbase = c.nodes == 2 ? 6 : 0;  // the two-node families also move the first node rigidly
@@ -438,7 +417,7 @@ TEST(SpatialJoint, AssembledConfigurationsSatisfyTheJointAndTheJacobianHasFullRa
             (difference(q, family(mu0 + h * unit(dim, k))) - difference(q, family(mu0 - h * unit(dim, k)))) / (2.0 * h);
       const double null = (phi_q * N).norm() / (phi_q.norm() * N.norm());
       worst_null = std::max(worst_null, null);
-      EXPECT_LE(null, 1e-8) << "allowed motions not in the null space of Φ_q:\n" << (phi_q * N).format(kFmt);
+      EXPECT_LE(null, 1e-8) << "allowed motions not in the null space of Φ_q:\n" << (phi_q * N).format(kSpatialFmt);
       const Eigen::JacobiSVD<Eigen::MatrixXd> nsvd(N);
       EXPECT_GT(nsvd.singularValues()[dim - 1] / nsvd.singularValues()[0], 1e-3)
           << "the allowed motions are not independent: " << nsvd.singularValues().transpose();
@@ -456,7 +435,7 @@ TEST(SpatialJoint, EachJointAllowsExactlyTheElementaryMotionsOfItsName) {
   //   planar: translations along a1, a2 and rotation about a3; fixed: none; point_on_line: rotations
   //   and translation along a3; point_on_plane: rotations and translations along a1, a2.
   // A driver removes its motion (rotation about a3, translation along a3).
-  const auto allowed = [](const JointCase& c, bool rotation, int axis) {
+  const auto allowed = [](const SpatialJointCase& c, bool rotation, int axis) {
     const std::string& type = c.joint->kind().name;
     if (type == "spherical") return bool(rotation);
     if (type == "universal") return rotation && axis < 2;
@@ -471,7 +450,7 @@ TEST(SpatialJoint, EachJointAllowsExactlyTheElementaryMotionsOfItsName) {
     return false;
   };
   std::mt19937 rng(200);
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     SCOPED_TRACE(c.label);
     const Pose<double> base = random_pose(rng);
     const Motion m0 = allowed_motion(c, Eigen::VectorXd::Zero(free_parameters(c)), kT);
@@ -482,7 +461,7 @@ TEST(SpatialJoint, EachJointAllowsExactlyTheElementaryMotionsOfItsName) {
           m.R = rot(axis, 0.4) * m0.R;
         else
           m.p += 0.4 * Eigen::Vector3d::Unit(axis);
-        const Eigen::VectorXd phi = phi_of(*c.joint, assembled(c, base, m));
+        const Eigen::VectorXd phi = spatial_phi_of(*c.joint, assembled(c, base, m));
         const std::string what =
             std::string(rotation ? "rotation about a" : "translation along a") + std::to_string(axis + 1) + ": Φ = ";
         if (allowed(c, rotation, axis))
@@ -497,27 +476,27 @@ TEST(SpatialJoint, EachJointAllowsExactlyTheElementaryMotionsOfItsName) {
 
 TEST(SpatialJoint, ConstraintJacobianMatchesFiniteDifferencesOnTheGroup) {
   std::mt19937 rng(300);
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     double worst = 0.0;
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       SCOPED_TRACE(c.label + ", random configuration #" + std::to_string(i));
       const Eigen::VectorXd q = violated(rng, c);
-      const Eigen::MatrixXd phi_q = phi_q_of(*c.joint, q);
-      const Eigen::MatrixXd fd = fd_on_group([&](const Eigen::VectorXd& x) { return phi_of(*c.joint, x); }, q);
+      const Eigen::MatrixXd phi_q = spatial_phi_q_of(*c.joint, q);
+      const Eigen::MatrixXd fd = fd_on_group([&](const Eigen::VectorXd& x) { return spatial_phi_of(*c.joint, x); }, q);
       const double d = discrepancy(phi_q, fd, phi_q.norm());
       worst = std::max(worst, d);
-      EXPECT_LE(d, kRelTol) << "Φ_q:\n" << phi_q.format(kFmt) << "\nFD:\n" << fd.format(kFmt);
+      EXPECT_LE(d, kSpatialRelTol) << "Φ_q:\n" << phi_q.format(kSpatialFmt) << "\nFD:\n" << fd.format(kSpatialFmt);
     }
-    report("Φ_q", c.label, worst);
+    spatial_report("Φ_q", c.label, worst);
   }
 }
 
 TEST(SpatialJoint, GeometricStiffnessMatchesFiniteDifferencesOfPhiQTransposeLambda) {
   // K_Φ e_j ≈ [Φ_q(q ∘ exp(ε e_j))ᵀλ − Φ_q(q ∘ exp(−ε e_j))ᵀλ] / 2ε: the outer perturbation first.
   std::mt19937 rng(400);
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     double worst = 0.0;
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       SCOPED_TRACE(c.label + ", random configuration #" + std::to_string(i));
       const Eigen::VectorXd q = violated(rng, c);
       const Eigen::VectorXd lambda = random_vector(rng, c.joint->size(), -2.0, 2.0);
@@ -526,14 +505,14 @@ TEST(SpatialJoint, GeometricStiffnessMatchesFiniteDifferencesOfPhiQTransposeLamb
       ASSERT_EQ(k.rows(), 6 * c.nodes);
       ASSERT_EQ(k.cols(), 6 * c.nodes);
       const Eigen::MatrixXd fd =
-          fd_on_group([&](const Eigen::VectorXd& x) { return (phi_q_of(*c.joint, x).transpose() * lambda).eval(); }, q);
+          fd_on_group([&](const Eigen::VectorXd& x) { return (spatial_phi_q_of(*c.joint, x).transpose() * lambda).eval(); }, q);
       const double d = discrepancy(k, fd, k.norm());
       worst = std::max(worst, d);
-      EXPECT_LE(d, kRelTol) << "K_Φ:\n"
-                            << k.format(kFmt) << "\nFD:\n"
-                            << fd.format(kFmt) << "\nλ = " << lambda.transpose();
+      EXPECT_LE(d, kSpatialRelTol) << "K_Φ:\n"
+                            << k.format(kSpatialFmt) << "\nFD:\n"
+                            << fd.format(kSpatialFmt) << "\nλ = " << lambda.transpose();
     }
-    report("∂(Φ_qᵀλ)/∂δ", c.label, worst);
+    spatial_report("∂(Φ_qᵀλ)/∂δ", c.label, worst);
   }
 }
 
@@ -542,8 +521,8 @@ TEST(SpatialJoint, GeometricStiffnessMatchesFiniteDifferencesOfPhiQTransposeLamb
 // derivatives by another route: equal to round-off for every joint type, driver and ground case.
 TEST(SpatialJoint, ClosedFormGeometricStiffnessEqualsNestedAutomaticDifferentiation) {
   std::mt19937 rng(401);
-  for (const JointCase& c : joint_cases()) {
-    for (int i = 0; i < kSamples; ++i) {
+  for (const SpatialJointCase& c : joint_cases()) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       SCOPED_TRACE(c.label + ", random configuration #" + std::to_string(i));
       const Eigen::VectorXd q = violated(rng, c);
       const Eigen::VectorXd lambda = random_vector(rng, c.joint->size(), -2.0, 2.0);
@@ -553,7 +532,7 @@ TEST(SpatialJoint, ClosedFormGeometricStiffnessEqualsNestedAutomaticDifferentiat
       ASSERT_EQ(closed.rows(), by_ad.rows());
       ASSERT_EQ(closed.cols(), by_ad.cols());
       EXPECT_LE((closed - by_ad).cwiseAbs().maxCoeff(), 1e-13 * std::max(1.0, by_ad.cwiseAbs().maxCoeff()))
-          << "closed form:\n" << closed.format(kFmt) << "\nAD:\n" << by_ad.format(kFmt);
+          << "closed form:\n" << closed.format(kSpatialFmt) << "\nAD:\n" << by_ad.format(kSpatialFmt);
     }
   }
 }
@@ -570,7 +549,7 @@ TEST(SpatialJoint, ClosedFormJacobianEqualsForwardAutomaticDifferentiation) {
       {dot(V::a1, V::d) + 2.0 * dot(V::a2, V::d), dot(V::a3, V::b1) + -0.5 * dot(V::a1, V::b2) + dot(V::e_z, V::d)},
       SpatialJointKind::axis, SpatialJointKind::angle | SpatialJointKind::displacement);
   std::vector<std::pair<std::string, std::shared_ptr<const SpatialJoint>>> joints;
-  for (const JointCase& c : joint_cases()) joints.emplace_back(c.label, c.joint);
+  for (const SpatialJointCase& c : joint_cases()) joints.emplace_back(c.label, c.joint);
   for (int nodes = 1; nodes <= 2; ++nodes) {
     const SpatialMarker a = marker(0, kPosA, kRotA), b = nodes == 2 ? marker(1, kPosB, kRotB) : marker(-1, kGround, kRotGround);
     joints.emplace_back("skew, " + std::to_string(nodes) + " node(s)", make_joint(skew, nodes, a, b, true, true));
@@ -578,7 +557,7 @@ TEST(SpatialJoint, ClosedFormJacobianEqualsForwardAutomaticDifferentiation) {
   double worst = 0.0;
   for (const auto& [label, joint] : joints) {
     const int nodes = static_cast<int>(joint->nodes().size());
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       SCOPED_TRACE(label + ", random configuration #" + std::to_string(i));
       std::vector<Pose<double>> poses;
       for (int n = 0; n < nodes; ++n) poses.push_back(random_pose(rng));
@@ -592,7 +571,7 @@ TEST(SpatialJoint, ClosedFormJacobianEqualsForwardAutomaticDifferentiation) {
       // The same kernel in doubles and as the AD value part: a few ulps apart at most.
       EXPECT_LE((phi - phi_ad).cwiseAbs().maxCoeff(), 1e-15 * (1.0 + phi_ad.cwiseAbs().maxCoeff()));
       const double d = (closed - by_ad).cwiseAbs().maxCoeff() / std::max(1.0, by_ad.cwiseAbs().maxCoeff());
-      EXPECT_LE(d, 1e-14) << "closed form:\n" << closed.format(kFmt) << "\nAD:\n" << by_ad.format(kFmt);
+      EXPECT_LE(d, 1e-14) << "closed form:\n" << closed.format(kSpatialFmt) << "\nAD:\n" << by_ad.format(kSpatialFmt);
       worst = std::max(worst, d);
     }
   }
@@ -602,16 +581,16 @@ TEST(SpatialJoint, ClosedFormJacobianEqualsForwardAutomaticDifferentiation) {
 
 TEST(SpatialJoint, TimeDerivativeMatchesFiniteDifferencesInTimeAndVanishesWithoutDrivers) {
   std::mt19937 rng(500);
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     double worst = 0.0;
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       SCOPED_TRACE(c.label + ", random configuration #" + std::to_string(i));
       const Eigen::VectorXd q = violated(rng, c);
       const double t = uniform(rng, 0.0, 3.0);
       Eigen::VectorXd phi_t;
       c.joint->time_derivative(q, t, phi_t);
       ASSERT_EQ(phi_t.size(), c.joint->size());
-      const Eigen::VectorXd fd = (phi_of(*c.joint, q, t + kFdStep) - phi_of(*c.joint, q, t - kFdStep)) / (2 * kFdStep);
+      const Eigen::VectorXd fd = (spatial_phi_of(*c.joint, q, t + kFdStep) - spatial_phi_of(*c.joint, q, t - kFdStep)) / (2 * kFdStep);
       if (!c.angle && !c.displacement) {
         EXPECT_EQ(phi_t, Eigen::VectorXd::Zero(c.joint->size()));
         EXPECT_EQ(fd, Eigen::VectorXd::Zero(c.joint->size()));
@@ -621,9 +600,9 @@ TEST(SpatialJoint, TimeDerivativeMatchesFiniteDifferencesInTimeAndVanishesWithou
       EXPECT_EQ(phi_t.head(c.joint->kind().num_equations), Eigen::VectorXd::Zero(c.joint->kind().num_equations));
       const double d = discrepancy(phi_t, fd, phi_t.norm());
       worst = std::max(worst, d);
-      EXPECT_LE(d, kRelTol) << "Φ_t = " << phi_t.transpose() << "\nFD:   " << fd.transpose();
+      EXPECT_LE(d, kSpatialRelTol) << "Φ_t = " << phi_t.transpose() << "\nFD:   " << fd.transpose();
     }
-    if (c.angle || c.displacement) report("Φ_t", c.label, worst);
+    if (c.angle || c.displacement) spatial_report("Φ_t", c.label, worst);
   }
 }
 
@@ -650,13 +629,13 @@ TEST(SpatialJoint, DriversPrescribeTheMotionOfNode1RelativeToNode2) {
     const Eigen::VectorXd q = stored({{x, R}}),
                           q_wrong = stored({{p + R.transpose() * (x0 - p) - u * n, R.transpose()}});
     const SpatialJoint cyl("c", {0}, kind("cylindrical"), a_framed, b_framed, kAngle, kDisplacement);
-    EXPECT_LE(phi_of(cyl, q, t).cwiseAbs().maxCoeff(), 1e-14) << "t = " << t << ": " << phi_of(cyl, q, t).transpose();
-    EXPECT_GT(phi_of(cyl, q_wrong, t).tail<2>().cwiseAbs().minCoeff(), 1e-3) << "t = " << t;
+    EXPECT_LE(spatial_phi_of(cyl, q, t).cwiseAbs().maxCoeff(), 1e-14) << "t = " << t << ": " << spatial_phi_of(cyl, q, t).transpose();
+    EXPECT_GT(spatial_phi_of(cyl, q_wrong, t).tail<2>().cwiseAbs().minCoeff(), 1e-3) << "t = " << t;
     // Rates: at a configuration satisfying the drivers, Φ_t = (−φ', −u').
     Eigen::VectorXd phi_t;
     cyl.time_derivative(q, t, phi_t);
-    EXPECT_NEAR(phi_t[4], -kAngle->derivative(t), 4 * kEps * std::abs(kAngle->derivative(t)));
-    EXPECT_NEAR(phi_t[5], -kDisplacement->derivative(t), 4 * kEps * std::abs(kDisplacement->derivative(t)));
+    EXPECT_NEAR(phi_t[4], -kAngle->derivative(t), 4 * kSpatialEps * std::abs(kAngle->derivative(t)));
+    EXPECT_NEAR(phi_t[5], -kDisplacement->derivative(t), 4 * kSpatialEps * std::abs(kDisplacement->derivative(t)));
   }
 }
 
@@ -664,9 +643,9 @@ TEST(SpatialJoint, AccelerationTermIsTheSecondDerivativeOfPhiAlongTheGroupMotion
   // c = d²/dτ² Φ(q ∘ exp(τ v), t + τ) (Φ_q v̇ = 0 on this path), and along q ∘ exp(τ v + τ² a/2):
   // Φ̈ = Φ_q a + c, which fixes the group convention q(t + τ) = q ∘ exp(τ v + τ² v̇ / 2 + O(τ³)).
   std::mt19937 rng(600);
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     double worst1 = 0.0, worst2 = 0.0;
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       SCOPED_TRACE(c.label + ", random state #" + std::to_string(i));
       const Eigen::VectorXd q = violated(rng, c);
       const int n = 6 * c.nodes;
@@ -678,15 +657,15 @@ TEST(SpatialJoint, AccelerationTermIsTheSecondDerivativeOfPhiAlongTheGroupMotion
       const Eigen::VectorXd fd1 = fd_second_along(*c.joint, q, v, zero, kT);
       const double d1 = discrepancy(acc, fd1, acc.norm());
       worst1 = std::max(worst1, d1);
-      EXPECT_LE(d1, kRelTol) << "c = " << acc.transpose() << "\nd²Φ/dτ² (FD) = " << fd1.transpose();
-      const Eigen::VectorXd expected = phi_q_of(*c.joint, q) * a + acc;
+      EXPECT_LE(d1, kSpatialRelTol) << "c = " << acc.transpose() << "\nd²Φ/dτ² (FD) = " << fd1.transpose();
+      const Eigen::VectorXd expected = spatial_phi_q_of(*c.joint, q) * a + acc;
       const Eigen::VectorXd fd2 = fd_second_along(*c.joint, q, v, a, kT);
       const double d2 = discrepancy(expected, fd2, expected.norm());
       worst2 = std::max(worst2, d2);
-      EXPECT_LE(d2, kRelTol) << "Φ_q a + c = " << expected.transpose() << "\nd²Φ/dτ² (FD) = " << fd2.transpose();
+      EXPECT_LE(d2, kSpatialRelTol) << "Φ_q a + c = " << expected.transpose() << "\nd²Φ/dτ² (FD) = " << fd2.transpose();
     }
-    report("c vs d²Φ(q∘exp(τv), t+τ)/dτ²", c.label, worst1);
-    report("Φ_q a + c vs d²Φ(q∘exp(τv+τ²a/2), t+τ)/dτ²", c.label, worst2);
+    spatial_report("c vs d²Φ(q∘exp(τv), t+τ)/dτ²", c.label, worst1);
+    spatial_report("Φ_q a + c vs d²Φ(q∘exp(τv+τ²a/2), t+τ)/dτ²", c.label, worst2);
   }
 }
 
@@ -696,18 +675,18 @@ TEST(SpatialJoint, ReactionIsTheGeneralizedForceOnNode1ReadAtMarkerA) {
   // For any λ: −Φ_{q,node 1}ᵀλ = [F; R₁ᵀ(M + (p_A − x₁) × F)] (virtual work on node 1 of a force F
   // at p_A and a moment M, world components), location = p_A, frame = rotation of marker A.
   std::mt19937 rng(700);
-  for (const JointCase& c : joint_cases()) {
+  for (const SpatialJointCase& c : joint_cases()) {
     SCOPED_TRACE(c.label);
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       const Eigen::VectorXd q = violated(rng, c);
       const Eigen::VectorXd lambda = random_vector(rng, c.joint->size(), -2.0, 2.0);
       const JointReaction r = c.joint->reaction(q, kT, lambda);
       std::vector<Pose<double>> nodes;
       for (int k = 0; k < c.nodes; ++k) nodes.push_back(pose_at(q, k));
       const Pose<double> A = c.joint->marker_a().pose<double>(nodes.data());
-      EXPECT_LE((r.location - A.x).norm(), 4 * kEps * (1 + A.x.norm()));
-      EXPECT_LE((r.frame - A.R).norm(), 4 * kEps);
-      const Eigen::VectorXd g = -phi_q_of(*c.joint, q).leftCols(6).transpose() * lambda;
+      EXPECT_LE((r.location - A.x).norm(), 4 * kSpatialEps * (1 + A.x.norm()));
+      EXPECT_LE((r.frame - A.R).norm(), 4 * kSpatialEps);
+      const Eigen::VectorXd g = -spatial_phi_q_of(*c.joint, q).leftCols(6).transpose() * lambda;
       Eigen::VectorXd from_reaction(6);
       from_reaction << r.force, nodes[0].R.transpose() * (r.moment + (r.location - nodes[0].x).cross(r.force));
       EXPECT_LE((g - from_reaction).norm(), 1e-14 * std::max(1.0, g.norm()))
@@ -727,7 +706,7 @@ TEST(SpatialJoint, SphericalJointHoldingAHangingBodyPushesUpWithItsWeight) {
   const SpatialJoint joint("pivot", {0}, kind("spherical"), marker(0, s_body, kRotA),
                            marker(-1, p, kRotGround));
   const Eigen::VectorXd q = stored({{p - R * s_body, R}});
-  EXPECT_LE(phi_of(joint, q).norm(), 4 * kEps);
+  EXPECT_LE(spatial_phi_of(joint, q).norm(), 4 * kSpatialEps);
   const RigidBody3D body("body", 0, mass, Eigen::Vector3d(0.2, 0.3, 0.4).asDiagonal(), Eigen::Vector3d(0, 0, -g));
   LocalState s;
   s.q = q;
@@ -739,15 +718,15 @@ TEST(SpatialJoint, SphericalJointHoldingAHangingBodyPushesUpWithItsWeight) {
   body.evaluate(s, out, false);
   // Equilibrium r + Φ_qᵀλ = 0, solved for λ (6 equations, 3 unknowns; consistent only if the
   // weight passes through the pivot).
-  const Eigen::MatrixXd phi_q = phi_q_of(joint, q);
+  const Eigen::MatrixXd phi_q = spatial_phi_q_of(joint, q);
   const Eigen::VectorXd lambda = phi_q.transpose().colPivHouseholderQr().solve(-out.r);
   EXPECT_LE((out.r + phi_q.transpose() * lambda).norm(), 1e-13 * mass * g) << "not in equilibrium";
   EXPECT_LE((lambda - Eigen::Vector3d(0, 0, mass * g)).norm(), 1e-14 * mass * g) << "λ = " << lambda.transpose();
   const JointReaction r = joint.reaction(q, kT, lambda);
   EXPECT_LE((r.force - Eigen::Vector3d(0, 0, mass * g)).norm(), 1e-14 * mass * g) << "F = " << r.force.transpose();
   EXPECT_LE(r.moment.norm(), 1e-14 * mass * g) << "M = " << r.moment.transpose();
-  EXPECT_LE((r.location - p).norm(), 4 * kEps * p.norm());
-  EXPECT_LE((r.frame - R * rot(kRotA)).norm(), 4 * kEps);
+  EXPECT_LE((r.location - p).norm(), 4 * kSpatialEps * p.norm());
+  EXPECT_LE((r.frame - R * rot(kRotA)).norm(), 4 * kSpatialEps);
 }
 
 TEST(SpatialJoint, FixedJointReactionBalancesTheLoadOnNode1AboutTheJointPoint) {
@@ -777,7 +756,7 @@ TEST(SpatialJoint, FixedJointReactionBalancesTheLoadOnNode1AboutTheJointPoint) {
     const SpatialJoint joint("clamp", nodes == 1 ? std::vector<int>{0} : std::vector<int>{0, 1},
                              kind("fixed"), marker(0, kPosA, kRotA), b);
     const Eigen::VectorXd q = stored(poses);
-    EXPECT_LE(phi_of(joint, q).norm(), 1e-14);
+    EXPECT_LE(spatial_phi_of(joint, q).norm(), 1e-14);
     LocalState s;
     s.q = q.head(7);
     s.v = Eigen::VectorXd::Zero(6);
@@ -787,7 +766,7 @@ TEST(SpatialJoint, FixedJointReactionBalancesTheLoadOnNode1AboutTheJointPoint) {
     out.reset(6, false);
     load.evaluate(s, out, false);
     // Equilibrium of node 1: r + Φ_{q,node 1}ᵀλ = 0 (6 × 6).
-    const Eigen::MatrixXd J1 = phi_q_of(joint, q).leftCols(6);
+    const Eigen::MatrixXd J1 = spatial_phi_q_of(joint, q).leftCols(6);
     const Eigen::VectorXd lambda = J1.transpose().partialPivLu().solve(-out.r);
     const JointReaction r = joint.reaction(q, kT, lambda);
     const double scale = F.norm() + M.norm();
@@ -795,8 +774,8 @@ TEST(SpatialJoint, FixedJointReactionBalancesTheLoadOnNode1AboutTheJointPoint) {
         << "F = " << r.force.transpose() << ", expected " << force.transpose();
     EXPECT_LE((r.moment - moment).norm(), 1e-13 * scale)
         << "M = " << r.moment.transpose() << ", expected " << moment.transpose();
-    EXPECT_LE((r.location - p_A).norm(), 4 * kEps * (1 + p_A.norm()));
-    EXPECT_LE((r.frame - frame_A).norm(), 4 * kEps);
+    EXPECT_LE((r.location - p_A).norm(), 4 * kSpatialEps * (1 + p_A.norm()));
+    EXPECT_LE((r.frame - frame_A).norm(), 4 * kSpatialEps);
   }
 }
 
@@ -822,7 +801,7 @@ LocalResidual evaluate(const Element& e, const LocalState& s, bool tangent) {
   return out;
 }
 
-const Eigen::Vector3d kGravity(0.0, 0.0, -9.81);
+const Eigen::Vector3d kSpatialGravity(0.0, 0.0, -9.81);
 
 /// An inertia tensor with principal moments 0.3, 0.5, 0.9 and axes Q (body frame).
 Eigen::Matrix3d general_inertia(const Eigen::Matrix3d& Q) {
@@ -836,34 +815,34 @@ TEST(RigidBody3D, ResidualIsNewtonEulerInHandComputedForm) {
   // J3 Ω̇3 − (J1 − J2) Ω1 Ω2]; with a general inertia Q J Qᵀ the moment rows are Q times those at QᵀΩ.
   std::mt19937 rng(900);
   const double mass = 2.5, J1 = 0.3, J2 = 0.5, J3 = 0.9;
-  const RigidBody3D principal("b", 0, mass, Eigen::Vector3d(J1, J2, J3).asDiagonal(), kGravity);
+  const RigidBody3D principal("b", 0, mass, Eigen::Vector3d(J1, J2, J3).asDiagonal(), kSpatialGravity);
   const Eigen::Matrix3d Q = rot(Eigen::Vector3d(0.3, -1.1, 0.6));
-  const RigidBody3D general("b", 0, mass, general_inertia(Q), kGravity);
-  for (int i = 0; i < kSamples; ++i) {
+  const RigidBody3D general("b", 0, mass, general_inertia(Q), kSpatialGravity);
+  for (int i = 0; i < kSpatialSamples; ++i) {
     const Pose<double> p = random_pose(rng);
     const Eigen::VectorXd q = stored({p});
     const Eigen::VectorXd v = random_vector(rng, 6, -3.0, 3.0), a = random_vector(rng, 6, -4.0, 4.0);
     const double lf = uniform(rng, 0.0, 1.0);
     const Eigen::Vector3d W = v.tail<3>(), Wd = a.tail<3>();
     Eigen::VectorXd expected(6);
-    expected << mass * (a[0] - lf * kGravity[0]), mass * (a[1] - lf * kGravity[1]), mass * (a[2] - lf * kGravity[2]),
+    expected << mass * (a[0] - lf * kSpatialGravity[0]), mass * (a[1] - lf * kSpatialGravity[1]), mass * (a[2] - lf * kSpatialGravity[2]),
         J1 * Wd[0] - (J2 - J3) * W[1] * W[2], J2 * Wd[1] - (J3 - J1) * W[2] * W[0],
         J3 * Wd[2] - (J1 - J2) * W[0] * W[1];
     // Round-off scale: the magnitudes of the terms summed in each row.
     const double force_scale = mass * (a.head<3>().norm() + 9.81);
     const double moment_scale = J3 * (Wd.norm() + W.squaredNorm());
     const Eigen::VectorXd r = evaluate(principal, spatial_state(q, v, a, kT, lf), false).r;
-    EXPECT_LE((r.head<3>() - expected.head<3>()).norm(), 4 * kEps * force_scale)
+    EXPECT_LE((r.head<3>() - expected.head<3>()).norm(), 4 * kSpatialEps * force_scale)
         << "r = " << r.transpose() << "\nexpected " << expected.transpose();
-    EXPECT_LE((r.tail<3>() - expected.tail<3>()).norm(), 8 * kEps * moment_scale)
+    EXPECT_LE((r.tail<3>() - expected.tail<3>()).norm(), 8 * kSpatialEps * moment_scale)
         << "r = " << r.transpose() << "\nexpected " << expected.transpose();
     // The same body with its principal axes turned by Q in the body frame.
     Eigen::VectorXd vg = v, ag = a;
     vg.tail<3>() = Q * W;
     ag.tail<3>() = Q * Wd;
     const Eigen::VectorXd rg = evaluate(general, spatial_state(q, vg, ag, kT, lf), false).r;
-    EXPECT_LE((rg.head<3>() - expected.head<3>()).norm(), 4 * kEps * force_scale);
-    EXPECT_LE((rg.tail<3>() - Q * expected.tail<3>()).norm(), 32 * kEps * moment_scale)
+    EXPECT_LE((rg.head<3>() - expected.head<3>()).norm(), 4 * kSpatialEps * force_scale);
+    EXPECT_LE((rg.tail<3>() - Q * expected.tail<3>()).norm(), 32 * kSpatialEps * moment_scale)
         << "Q r_θ(principal) = " << (Q * expected.tail<3>()).transpose()
         << "\nr_θ(general) = " << rg.tail<3>().transpose();
     // Independent of the configuration (K = 0): the same residual at another pose.
@@ -876,9 +855,9 @@ TEST(RigidBody3D, TangentsAreZeroKConstantMAndCMatchingFiniteDifferencesInOmega)
   std::mt19937 rng(1000);
   const double mass = 2.5;
   const Eigen::Matrix3d J = general_inertia(rot(Eigen::Vector3d(0.3, -1.1, 0.6)));
-  const RigidBody3D body("b", 0, mass, J, kGravity);
+  const RigidBody3D body("b", 0, mass, J, kSpatialGravity);
   double worst = 0.0;
-  for (int i = 0; i < kSamples; ++i) {
+  for (int i = 0; i < kSpatialSamples; ++i) {
     const LocalState s = spatial_state(stored({random_pose(rng)}), random_vector(rng, 6, -3.0, 3.0),
                                        random_vector(rng, 6, -4.0, 4.0), kT);
     const LocalResidual t = evaluate(body, s, true);
@@ -907,7 +886,7 @@ TEST(RigidBody3D, TangentsAreZeroKConstantMAndCMatchingFiniteDifferencesInOmega)
         s.v, alphaflex::testing::fixed_fd_step(kFdStep));
     const double d = discrepancy(t.C, C_fd, t.C.norm());
     worst = std::max(worst, d);
-    EXPECT_LE(d, kRelTol) << "C:\n" << t.C.format(kFmt) << "\nFD:\n" << C_fd.format(kFmt);
+    EXPECT_LE(d, kSpatialRelTol) << "C:\n" << t.C.format(kSpatialFmt) << "\nFD:\n" << C_fd.format(kSpatialFmt);
     EXPECT_EQ(t.C.leftCols(3), Eigen::MatrixXd::Zero(6, 3));
     EXPECT_EQ(t.C.topRows(3), Eigen::MatrixXd::Zero(3, 6));
     // M by differences in q̈ (r is linear in q̈: exact up to round-off).
@@ -920,7 +899,7 @@ TEST(RigidBody3D, TangentsAreZeroKConstantMAndCMatchingFiniteDifferencesInOmega)
     }
     EXPECT_LE((M_fd - M).norm(), 1e-14 * M.norm());
   }
-  report("C = ∂r/∂Ω", "rigid body 3D", worst);
+  spatial_report("C = ∂r/∂Ω", "rigid body 3D", worst);
 }
 
 TEST(RigidBody3D, TorqueFreeMotionConservesEnergyAndAngularMomentum) {
@@ -929,7 +908,7 @@ TEST(RigidBody3D, TorqueFreeMotionConservesEnergyAndAngularMomentum) {
   std::mt19937 rng(1100);
   const Eigen::Matrix3d J = general_inertia(rot(Eigen::Vector3d(0.3, -1.1, 0.6)));
   const RigidBody3D body("b", 0, 1.7, J, Eigen::Vector3d::Zero());
-  for (int i = 0; i < kSamples; ++i) {
+  for (int i = 0; i < kSpatialSamples; ++i) {
     const Eigen::VectorXd v = random_vector(rng, 6, -3.0, 3.0);
     const LocalResidual t =
         evaluate(body, spatial_state(stored({random_pose(rng)}), v, Eigen::VectorXd::Zero(6), kT), true);
@@ -1003,7 +982,7 @@ TEST(SpatialLoad, ResidualIsMinusTheGeneralizedForceScaledByTheLoadFactor) {
   std::mt19937 rng(1200);
   for (const LoadCase& c : load_cases()) {
     SCOPED_TRACE(c.label);
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       const Pose<double> p = random_pose(rng);
       const Eigen::VectorXd v = random_vector(rng, 6, -1, 1), a = random_vector(rng, 6, -1, 1);
       const double scale = c.F.norm() * (1 + c.s.norm()) + c.M.norm();
@@ -1016,8 +995,8 @@ TEST(SpatialLoad, ResidualIsMinusTheGeneralizedForceScaledByTheLoadFactor) {
         EXPECT_EQ(t.M, Eigen::MatrixXd::Zero(6, 6));
         // The load factor scales r and K.
         const LocalResidual one = evaluate(*c.load, spatial_state(stored({p}), v, a, kT, 1.0), true);
-        EXPECT_LE((t.r - lf * one.r).norm(), 4 * kEps * one.r.norm()) << "λ_f = " << lf;
-        EXPECT_LE((t.K - lf * one.K).norm(), 4 * kEps * one.K.norm()) << "λ_f = " << lf;
+        EXPECT_LE((t.r - lf * one.r).norm(), 4 * kSpatialEps * one.r.norm()) << "λ_f = " << lf;
+        EXPECT_LE((t.K - lf * one.K).norm(), 4 * kSpatialEps * one.K.norm()) << "λ_f = " << lf;
         if (lf == 0.0) {
           EXPECT_EQ(t.r, Eigen::VectorXd::Zero(6));
         }
@@ -1032,7 +1011,7 @@ TEST(SpatialLoad, StiffnessMatchesFiniteDifferencesOnTheGroup) {
   std::mt19937 rng(1300);
   for (const LoadCase& c : load_cases()) {
     double worst = 0.0;
-    for (int i = 0; i < kSamples; ++i) {
+    for (int i = 0; i < kSpatialSamples; ++i) {
       SCOPED_TRACE(c.label + ", random configuration #" + std::to_string(i));
       const LocalState s = spatial_state(stored({random_pose(rng)}), random_vector(rng, 6, -1, 1),
                                          random_vector(rng, 6, -1, 1), kT, 0.8);
@@ -1047,15 +1026,17 @@ TEST(SpatialLoad, StiffnessMatchesFiniteDifferencesOnTheGroup) {
       const double scale = c.F.norm() * (1 + c.s.norm()) + c.M.norm();
       if (c.follower && c.F.norm() == 0.0) {
         EXPECT_EQ(t.K, Eigen::MatrixXd::Zero(6, 6));
-        EXPECT_LE(fd.norm(), kRelTol * scale);
+        EXPECT_LE(fd.norm(), kSpatialRelTol * scale);
         worst = std::max(worst, fd.norm() / scale);
         continue;
       }
       ASSERT_GT(t.K.norm(), 0.1 * scale);
       const double d = discrepancy(t.K, fd, t.K.norm());
       worst = std::max(worst, d);
-      EXPECT_LE(d, kRelTol) << "K:\n" << t.K.format(kFmt) << "\nFD:\n" << fd.format(kFmt);
+      EXPECT_LE(d, kSpatialRelTol) << "K:\n" << t.K.format(kSpatialFmt) << "\nFD:\n" << fd.format(kSpatialFmt);
     }
-    report("K = ∂r/∂δ", c.label, worst);
+    spatial_report("K = ∂r/∂δ", c.label, worst);
   }
 }
+
+}  // namespace alphaflex

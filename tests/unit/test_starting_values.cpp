@@ -19,7 +19,7 @@ std::string read_text(const std::string& path) {
 }
 
 /// Runs the scene text `text` (written to `dir`) with overrides, every step's sensors kept.
-RunSummary run_text(const TestOutputDir& dir, const std::string& name, const std::string& text,
+RunSummary run_written_scene(const TestOutputDir& dir, const std::string& name, const std::string& text,
                     const std::vector<std::string>& overrides, std::function<void(const MechanicalState&)> on_step = {}) {
   Scene s = read_scene(dir.write(name + ".yaml", text), overrides);
   RunOptions opt;
@@ -139,7 +139,7 @@ TEST(StartingValues, MassWeightedProjectionMovesTheMasslessPoint) {
   text.replace(text.find(hinge), hinge.size(), "position: [l1*cos(theta1) + 0.01, l1*sin(theta1) - 0.02]");
   auto start_of = [&](const std::string& projection, Eigen::VectorXd& q_start) {
     bool first = true;
-    const RunSummary r = run_text(dir, "slider_crank_moved", text,
+    const RunSummary r = run_written_scene(dir, "slider_crank_moved", text,
                                   {"solver.t_end=5e-3", "solver.start_projection=" + projection},
                                   [&](const MechanicalState& st) {
                                     if (first) q_start = st.q;
@@ -177,8 +177,8 @@ TEST(NewtonScales, ShiftedSceneTakesTheSameIterations) {
                                            "position: [($1) + ox, ($2) + oy]");
   shifted = std::regex_replace(shifted, std::regex(R"((origin|point2): \[0, 0\])"), "$1: [ox, oy]");
   shifted = std::regex_replace(shifted, std::regex("parameters:\n"), "parameters:\n  ox: 1.0e4\n  oy: 1.0e4\n");
-  const RunSummary at_origin = run_text(dir, "slider_crank", text, {});
-  const RunSummary far = run_text(dir, "slider_crank_shifted", shifted, {});
+  const RunSummary at_origin = run_written_scene(dir, "slider_crank", text, {});
+  const RunSummary far = run_written_scene(dir, "slider_crank_shifted", shifted, {});
   ASSERT_EQ(far.steps, at_origin.steps);
   std::printf("Newton iterations: %ld at the origin, %ld at 10 km (%d steps)\n", at_origin.newton_total,
               far.newton_total, at_origin.steps);

@@ -1,6 +1,8 @@
 #pragma once
 // Helpers shared by the tests: run a scene in-process, read reference CSVs, fit slopes, a fresh
-// output directory, central differences.
+// output directory, central differences, random samples. A helper that two test files would
+// define alike lives here: the unit tests are compiled in unity batches (ALPHAFLEX_UNITY_BUILD),
+// where two files' file-local helpers of one name would meet (scripts/check_unity_names.py).
 #include <gtest/gtest.h>
 #include <petscsys.h>
 #include <stdlib.h>
@@ -11,7 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <map>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -236,6 +240,59 @@ inline GroupOrders successive_difference_orders(const std::vector<double>& hs, c
               o.rotation, o.velocity, o.multiplier);
   return o;
 }
+
+// ---- Random samples and small vectors ---------------------------------------------------------------
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+/// A sample of the uniform distribution on [a, b).
+inline double uniform(std::mt19937& rng, double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+
+/// n samples of the uniform distribution on [a, b).
+inline Eigen::VectorXd random_vector(std::mt19937& rng, int n, double a, double b) {
+  Eigen::VectorXd x(n);
+  for (int i = 0; i < n; ++i) x[i] = uniform(rng, a, b);
+  return x;
+}
+
+/// The vector of the numbers x.
+inline Eigen::VectorXd vec(std::initializer_list<double> x) {
+  Eigen::VectorXd v(static_cast<int>(x.size()));
+  int i = 0;
+  for (double xi : x) v[i++] = xi;
+  return v;
+}
+
+/// A pose at a uniform position in [−1, 1)³, rotated by a uniform angle in [0, max_angle) about a
+/// uniform direction.
+inline Pose<double> random_pose(std::mt19937& rng, double max_angle = 3.0) {
+  const Eigen::Vector3d w = random_vector(rng, 3, -1.0, 1.0);
+  return {random_vector(rng, 3, -1.0, 1.0), exp_so3<double>(Eigen::Vector3d(uniform(rng, 0.0, max_angle) * w.normalized()))};
+}
+
+/// A marker of frame `slot` at p in the frame, rotated from it by exp(ŵ).
+inline SpatialMarker marker(int slot, const Eigen::Vector3d& p, const Eigen::Vector3d& w = Eigen::Vector3d::Zero()) {
+  SpatialMarker m;
+  m.slot = slot;
+  m.position = p;
+  m.rotation = exp_so3<double>(w);
+  return m;
+}
+
+/// The 7 stored numbers (position, unit quaternion) of each pose, one pose after the other.
+inline Eigen::VectorXd stored(const std::vector<Pose<double>>& poses) {
+  Eigen::VectorXd q(7 * poses.size());
+  for (size_t k = 0; k < poses.size(); ++k) store_pose(poses[k].x, poses[k].R, q.data() + 7 * k);
+  return q;
+}
+
+/// |approx − exact| / |exact| (Frobenius norms).
+inline double relative_error(const Eigen::MatrixXd& exact, const Eigen::MatrixXd& approx) {
+  return (approx - exact).norm() / exact.norm();
+}
+
+/// meshes/NAME of the source tree.
+inline std::string mesh_path(const std::string& name) { return std::string(ALPHAFLEX_SOURCE_DIR) + "/meshes/" + name; }
 
 // ---- Central differences: the one finite-difference helper of the tests ---------------------------
 // Finite differences only check (docs/architecture.md): every tangent of the code is exact and is
