@@ -221,6 +221,7 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     sum.final_sensors = values;
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
+    if (dynamic) sum.newton_method = integrator.newton_method();  // static load steps: full Newton always
     if (integrator.modified_newton()) {
       sum.reused_iterations = integrator.reused_iterations();
       sum.contraction_refreshes = integrator.contraction_refreshes();
@@ -496,6 +497,7 @@ std::string format_summary(const Scene& scene, const RunSummary& s) {
       os << "    " << std::setw(4) << r << std::setw(14) << s.unknowns_per_rank[static_cast<size_t>(r)] << std::setw(14)
          << s.ghosts_per_rank[static_cast<size_t>(r)] << "\n";
   }
+  if (!s.newton_method.empty()) os << "  Newton method       " << s.newton_method << "\n";
   os
      << "  Newton iterations   total " << s.newton_total << ", mean " << mean << " per step, max " << s.newton_max << "\n"
      << "  factorizations      " << s.factorizations << " numeric, " << s.symbolic_analyses << " symbolic, "

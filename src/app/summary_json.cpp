@@ -91,6 +91,7 @@ std::string summary_json(const Scene& scene, const RunSummary& s) {
                     {"unknowns_per_rank", s.unknowns_per_rank},
                     {"ghost_nodes_per_rank", s.ghosts_per_rank}};
   j["newton"] = {{"total", s.newton_total}, {"mean_per_step", f.mean_newton}, {"max", s.newton_max}};
+  if (!s.newton_method.empty()) j["newton"]["method"] = s.newton_method;
   j["factorizations"] = {{"numeric", s.factorizations}, {"symbolic", s.symbolic_analyses}};
   if (s.reused_iterations >= 0)
     j["modified_newton"] = {{"reused_iterations", s.reused_iterations}, {"contraction_refreshes", s.contraction_refreshes},

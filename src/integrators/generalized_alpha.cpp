@@ -20,8 +20,30 @@ GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solv
       scales_(NewtonScales::of(system.subdomain())),
       p_(std::move(params)),
       opt_(options),
-      modified_(options.newton.uses_modified(system.subdomain().dof_map().global_size())) {
+      modified_(false) {
   p_.validate();
+  // Decided on the global model (every rank holds it), so every rank and every restart decides alike.
+  const NewtonOptions& n = opt_.newton;
+  const long unknowns = system.subdomain().dof_map().global_size();
+  const Element* favouring = nullptr;
+  for (const auto& e : system.subdomain().global_model().elements())
+    if (e->favours_modified_newton()) {
+      favouring = e.get();
+      break;
+    }
+  modified_ = n.uses_modified(unknowns, favouring != nullptr);
+  std::ostringstream why;
+  why << (modified_ ? "modified" : "full") << " (solver.newton.modified: ";
+  if (n.method != NewtonOptions::Method::automatic)
+    why << (modified_ ? "on" : "off") << ")";
+  else if (unknowns >= n.modified_from)
+    why << "auto, " << unknowns << " unknowns >= modified_from " << n.modified_from << ")";
+  else if (favouring)
+    why << "auto, " << unknowns << " unknowns < modified_from " << n.modified_from << " but `" << favouring->name()
+        << "` is " << favouring->favours_modified_newton() << ")";
+  else
+    why << "auto, " << unknowns << " unknowns < modified_from " << n.modified_from << ")";
+  newton_method_ = why.str();
 }
 
 double GeneralizedAlpha::initialize(MechanicalState& s) {

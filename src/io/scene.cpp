@@ -134,7 +134,7 @@ const Schema& newton_schema() {
       {"atol", KeyType::Number, "m, rad", "1e-12", "absolute tolerance on the coordinate correction", Range::non_negative(), "tolerance (m, rad)"},
       {"atol_lambda", KeyType::Number, "N, N·m", "1e-9", "absolute tolerance on the multiplier correction", Range::non_negative(), "tolerance (N)"},
       {"modified", KeyType::Choice, "–", "`auto`",
-       "modified Newton: keep the factorization of S_t across iterations and steps (`on`), full Newton (`off`), or `auto`: modified Newton from `modified_from` unknowns (all ranks together), full Newton below (measured: docs/performance.md, \"Modified Newton by default\"). Dynamic steps only: static load steps use full Newton",
+       "modified Newton: keep the factorization of S_t across iterations and steps (`on`), full Newton (`off`), or `auto`: modified Newton from `modified_from` unknowns (all ranks together) or for a model with a reduced body or a joint motor whose law reads sensors, full Newton otherwise; the summary's `Newton method` line says which and why (measured: docs/performance.md, \"Modified Newton by default\"). Dynamic steps only: static load steps use full Newton",
        {}, "", "", {"auto", "on", "off"}},
       {"modified_from", KeyType::Integer, "unknowns", "30",
        "with `modified: auto`: the number of unknowns (coordinates and multipliers of the whole model) from which modified Newton is used",

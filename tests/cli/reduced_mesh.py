@@ -123,7 +123,11 @@ def main():
           "root_M2, mid_M2 and root_V3 equal their elements' cells in the results, bit for bit, on 1 and 2 ranks")
     worst_sensor = max(np.max(np.abs(cb4_2[k] - cb4[k])) / np.max(np.abs(cb4[k])) for k in cells)
     print(f"section-force sensors, 2 ranks vs 1 rank: {worst_sensor:.3e}")
-    check(worst_sensor < 1e-12, "the section-force sensors agree between 1 and 2 ranks (1e-12 relative, as the datasets)")
+    # Round-off: the states agree to 1e-12 (the datasets, below); a section force differences the
+    # strains of nodes an element apart, which amplifies their round-off ~100-fold (measured: states
+    # 1.2e-14 and 3.7e-14, forces 9.6e-13 and 1.9e-12, with full and with modified Newton, the
+    # default for a reduced body). A force computed on the wrong rank or summed twice is O(1) off.
+    check(worst_sensor < 1e-10, "the section-force sensors agree between 1 and 2 ranks (1e-10 relative: the datasets' 1e-12 times the strains' amplification)")
     new = ["reduced_beam_points", "reduced_beam_displacement", "reduced_beam_velocity", "reduced_beam_quaternion",
            "reduced_beam_axis2", "reduced_beam_axis3", "reduced_beam_M2", "reduced_beam_N", "modal_coordinates", "modal_velocities"]
     worst_rank = 0.0

@@ -56,6 +56,8 @@ struct RunSummary : CheckpointStats {
   /// Modified Newton: iterations on a factorization kept from before, refactorizations forced by a
   /// contraction rate above solver.newton.max_contraction (-1: full Newton).
   long reused_iterations = -1, contraction_refreshes = 0;
+  /// Dynamic runs: Newton's method and why (GeneralizedAlpha::newton_method); empty for statics.
+  std::string newton_method;
   /// Modified Newton: steps begun on a fresh factorization because the last step begun on an old
   /// one had to refactor at its first rate test (GeneralizedAlpha::fresh_starts).
   long fresh_starts = 0;

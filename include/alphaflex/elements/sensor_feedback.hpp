@@ -34,6 +34,12 @@ class SensorFeedbackForce final : public Element {
     return role_ == Role::motor ? "joint_motor" : role_ == Role::integrator ? "sensor_integrator" : "sensor_expression";
   }
   std::unique_ptr<Element> clone() const override { return std::make_unique<SensorFeedbackForce>(*this); }
+  /// A motor's tangent goes through the derivatives of every sensor its law reads; modified Newton
+  /// gained on the pan-tilt head (15 unknowns) where full Newton wins on every other mechanism of its
+  /// size (docs/performance.md, "Modified Newton by default").
+  const char* favours_modified_newton() const override {
+    return role_ == Role::motor ? "a joint motor whose law reads sensors (its tangent goes through their derivatives)" : nullptr;
+  }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
   /// Motor: coordinate, speed, drive (as a joint_motor); integrator: integral ẇ, integrand e; probe: value.
   std::vector<CellField> cell_fields() const override;

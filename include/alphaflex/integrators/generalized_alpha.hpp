@@ -19,7 +19,7 @@
 // β' ~ 1/(βh²), which no further iteration removes.
 //
 // Modified Newton (NewtonOptions::method; by default from NewtonOptions::modified_from unknowns
-// on, decided once from the global size): S_t is kept factored across iterations and steps. The
+// on, or for a model with an element that favours it, decided once from the global model): S_t is kept factored across iterations and steps. The
 // iteration then converges linearly with a rate θ_k = ‖Δ_k‖/‖Δ_{k−1}‖, and a small last correction
 // no longer means a small error: the error left after Δ_k is about θ/(1−θ)‖Δ_k‖ (the estimate of
 // simplified Newton in Hairer & Wanner, Solving ODEs II, Sec. IV.8, eq. 8.13), which is what the
@@ -148,8 +148,10 @@ class GeneralizedAlpha {
   /// forced by a slow contraction.
   long reused_iterations() const { return reused_; }
   /// Whether the steps iterate with modified Newton (NewtonOptions::uses_modified at this
-  /// system's global size: the same on every rank).
+  /// system's global size and elements: the same on every rank).
   bool modified_newton() const { return modified_; }
+  /// The method and why (for the summary): "modified (auto: 41 unknowns >= …)", "full (…: off)".
+  const std::string& newton_method() const { return newton_method_; }
   long contraction_refreshes() const { return refreshes_; }
   /// Steps begun on a fresh factorization because the last step begun on an old one had to
   /// refactor at its first rate test (modified Newton; see try_step).
@@ -164,6 +166,7 @@ class GeneralizedAlpha {
   IntegratorOptions opt_;
   Eigen::VectorXd a_;
   bool modified_ = false;    ///< modified Newton (resolved from opt_.newton at construction)
+  std::string newton_method_;  ///< newton_method()
   double factored_h_ = 0.0;  ///< h of the S_t now factored (0: none usable)
   double h_aux_ = 0.0;       ///< the h a_ belongs to
   bool variable_ = false, estimate_ = false, across_h_ = false;

@@ -22,19 +22,24 @@ struct NewtonOptions {
   /// iterations and steps, and refactorize only when the contraction rate θ = ‖Δ_k‖/‖Δ_{k−1}‖
   /// exceeds max_contraction, when h changes (in adaptive runs: beyond h_change_rate), or after a
   /// checkpoint (generalized_alpha.hpp).
-  /// `automatic` (the default) chooses by the size of the system, see uses_modified.
+  /// `automatic` (the default) chooses by the size of the system and its elements, see uses_modified.
   enum class Method { full, modified, automatic };
   Method method = Method::automatic;
   /// With Method::automatic: modified Newton from this many unknowns (coordinates and
-  /// multipliers, all ranks together), full Newton below. Measured on every scene of inputs/
-  /// (docs/performance.md, "Modified Newton by default"): modified Newton gains 1.2–3.5× per step
-  /// from 32 unknowns on and loses (0.66–0.84×) on the 9–22-unknown mechanisms, where a dense LU
-  /// costs less than the extra residual evaluations of its linear convergence.
+  /// multipliers, all ranks together), full Newton below unless an element favours modified
+  /// Newton. Measured on every scene of inputs/ (docs/performance.md, "Modified Newton by
+  /// default"; dense LU by LAPACK): modified Newton gains 1.1–7× per step from 38 unknowns on but
+  /// on two mechanisms whose residual is the costly part (0.69–0.91×), and loses (0.71–0.94×) on the
+  /// 9–22-unknown rigid mechanisms, where a dense LU costs less than the extra residual
+  /// evaluations of its linear convergence.
   long modified_from = 30;
   /// Whether a system of `global_unknowns` unknowns (the same number on every rank, so every
-  /// rank decides alike) iterates with modified Newton.
-  bool uses_modified(long global_unknowns) const {
-    return method == Method::modified || (method == Method::automatic && global_unknowns >= modified_from);
+  /// rank decides alike) iterates with modified Newton; `favoured`: the model has an element for
+  /// which modified Newton pays at any size (Element::favours_modified_newton; decided on the
+  /// global model, the same on every rank).
+  bool uses_modified(long global_unknowns, bool favoured = false) const {
+    return method == Method::modified ||
+           (method == Method::automatic && (global_unknowns >= modified_from || favoured));
   }
   double max_contraction = 0.5;  ///< θ above which S_t is assembled and factored afresh
   /// Adaptive steps with modified Newton: the scaled S_t factored for h_f serves a step of size h

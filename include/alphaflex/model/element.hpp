@@ -86,6 +86,14 @@ class Element {
   /// What a reduction differentiates (modal/superelement.hpp, nonlinear_stiffness). Returns false,
   /// r untouched, if the element does not offer it: the caller evaluates the whole element at rest.
   virtual bool internal_force(const Eigen::VectorXd& /*q*/, Eigen::VectorXd& /*r*/) const { return false; }
+  /// Whether a model with this element iterates with modified Newton under the default policy
+  /// whatever its size (NewtonOptions::uses_modified): an element whose tangent costs several
+  /// residuals and changes little from one step to the next, so that the iterations modified
+  /// Newton adds cost less than the tangents it saves. Measured on every dynamic scene of inputs/
+  /// (docs/performance.md, "Modified Newton by default"): true for a reduced body and for a motor
+  /// whose law reads sensors; nullptr (the size decides) for every other element. Returns why,
+  /// in words for the run's summary ("a reduced body, …").
+  virtual const char* favours_modified_newton() const { return nullptr; }
 
   /// The same element on other indices of the same nodes: a subdomain's local numbering
   /// (partition/subdomain.hpp). An element holds no reference to the model, so the copy is whole.
