@@ -221,7 +221,10 @@ RunSummary run_body(RunObjects& o, Scene& scene, const RunOptions& opt, MPI_Comm
     sum.final_sensors = values;
     sum.times = integrator.times();
     sum.factorizations = solver.numeric_count();
-    if (dynamic) sum.newton_method = integrator.newton_method();  // static load steps: full Newton always
+    if (dynamic) {  // static load steps: full Newton always
+      sum.newton_method = integrator.newton_method();
+      if (sum.static_steps > 0) sum.newton_method += "; the initial static load steps: full Newton";
+    }
     if (integrator.modified_newton()) {
       sum.reused_iterations = integrator.reused_iterations();
       sum.contraction_refreshes = integrator.contraction_refreshes();

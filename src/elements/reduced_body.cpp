@@ -85,7 +85,12 @@ SymmetricTensor::SymmetricTensor(int order, int dim) : order_(order), dim_(dim) 
 
 double SymmetricTensor::operator()(int i, int j, int k, int l) const {
   int x[4] = {i, j, k, l};
-  std::sort(x, x + order_);
+  // Constant bounds (order_ is 3 or 4, checked above): with x + order_ GCC 12 cannot see that the
+  // sort stays within x and warns (-Warray-bounds) from its unrolled insertion sort.
+  if (order_ == 3)
+    std::sort(x, x + 3);
+  else
+    std::sort(x, x + 4);
   // Lexicographic rank among the nondecreasing tuples: at each position p, the tuples that agree
   // before p and have a smaller value v there, with the rest ≥ v.
   size_t rank = 0;

@@ -22,7 +22,9 @@ GeneralizedAlpha::GeneralizedAlpha(SaddlePointSystem& system, LinearSolver& solv
       opt_(options),
       modified_(false) {
   p_.validate();
-  // Decided on the global model (every rank holds it), so every rank and every restart decides alike.
+  // Decided on the global model, which every rank holds whole (the scene is read on every rank:
+  // partition/subdomain.hpp), so every rank and every restart decides alike. When the scene is cut
+  // per rank (docs/architecture.md, "Past this machine"), this loop needs an MPI_LOR reduction.
   const NewtonOptions& n = opt_.newton;
   const long unknowns = system.subdomain().dof_map().global_size();
   const Element* favouring = nullptr;

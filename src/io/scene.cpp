@@ -137,7 +137,7 @@ const Schema& newton_schema() {
        "modified Newton: keep the factorization of S_t across iterations and steps (`on`), full Newton (`off`), or `auto`: modified Newton from `modified_from` unknowns (all ranks together) or for a model with a reduced body or a joint motor whose law reads sensors, full Newton otherwise; the summary's `Newton method` line says which and why (measured: docs/performance.md, \"Modified Newton by default\"). Dynamic steps only: static load steps use full Newton",
        {}, "", "", {"auto", "on", "off"}},
       {"modified_from", KeyType::Integer, "unknowns", "30",
-       "with `modified: auto`: the number of unknowns (coordinates and multipliers of the whole model) from which modified Newton is used",
+       "with `modified: auto`: the number of unknowns (coordinates and multipliers of the whole model) from which modified Newton is used (below it too for a model with a reduced body or a joint motor that reads sensors)",
        Range::closed(1, 1000000000)},
       {"max_contraction", KeyType::Number, "–", "0.5",
        "with `modified`: contraction rate θ = ‖Δ_k‖∞/‖Δ_{k−1}‖∞ above which S_t is assembled and factored afresh",

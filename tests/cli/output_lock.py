@@ -50,7 +50,14 @@ def main():
         if not pid or not host:
             fail(f"{lock} does not name run A: {text!r}")
         csv = os.path.join(a.out, name + ".csv")
-        header = open(csv).readline()
+        # Run A takes the lock before it creates its files: under load its CSV can lag the lock.
+        header = ""
+        while time.time() < deadline and not header.endswith("\n"):
+            header = open(csv).readline() if os.path.exists(csv) else ""
+            if not header.endswith("\n"):
+                time.sleep(0.1)
+        if not header:
+            fail(f"run A holds the lock but wrote no {csv} within 60 s")
         second = subprocess.run(command(0.05), stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=60)
         want = (re.escape(lock) + r": another run writes the results of '" + re.escape(name) +
                 r"' in this directory \(PID " + pid.group(1) + " on host " + re.escape(host.group(1)))

@@ -136,7 +136,7 @@ TEST(InitialConditions, APlacedBeamAndPlateMoveAsTheSameBlocksMeshedInThePlacedP
   // by the round-off of R x in the node coordinates (~1e-16 m) and of the frames built from them;
   // Newton stops at rtol 1e-12 (quadratic convergence leaves far less), so the sensors agree to
   // ~1e-12 of their size: the test allows 1e-10 m and 1e-8 N (reactions of ~10 N). Full Newton by
-  // name: modified Newton (the default from 30 unknowns) converges linearly and leaves ~4e-6 N.
+  // name: modified Newton (the default from 30 unknowns; modified_newton tests) converges linearly and leaves ~4e-6 N.
   const std::vector<Eigen::Vector3d> beam{{0, 0, 0}, {1, 0, 0}};
   const std::vector<Eigen::Vector3d> plate{{0, 1, 0}, {0.3, 1, 0}, {0.3, 1.2, 0}, {0, 1.2, 0}};
   const Eigen::Vector3d axis1 = Eigen::Vector3d(1, 2, 3).normalized(), axis2 = Eigen::Vector3d(-1, 0.5, 2).normalized();

@@ -509,6 +509,9 @@ TEST(ReducedBody, FreeTumblingBarConservesEnergyAndMomentaInGeneralizedAlpha) {
   LinearSolver solver(PETSC_COMM_SELF);
   IntegratorOptions opt;
   opt.newton.rtol = 1e-12;
+  // Full Newton by name (the default takes modified Newton for a reduced body): the drifts are those
+  // of the scheme, Newton converged quadratically far below rtol.
+  opt.newton.method = NewtonOptions::Method::full;
   GeneralizedAlpha ga(sys, solver, AlphaParameters::from_rho_inf(1.0), opt);
   MechanicalState s = model.initial_state();
   ga.initialize(s);
