@@ -7,6 +7,7 @@ with a message when pvpython or xvfb-run is missing.
 usage: /usr/bin/python3 render_check.py REPO RESULT.xdmf OUTDIR
 """
 import os
+import random
 import shutil
 import subprocess
 import sys
@@ -21,9 +22,21 @@ from PIL import Image  # noqa: E402
 
 name = os.path.splitext(os.path.basename(result))[0]
 shutil.rmtree(outdir, ignore_errors=True)
-cmd = ["xvfb-run", "-a", "pvpython", os.path.join(repo, "scripts/render.py"), result, "-o", outdir, "--frames", "2",
-       "--size", "400x300", "--no-annotations"]
-p = subprocess.run(cmd, capture_output=True, text=True, timeout=240)
+# The X server: xvfb-run -a takes the first display number from 99 up whose lock file in /tmp is
+# free. Two such runs at once (two ctest suites on one machine, or another job beside CI) can pick
+# the same number, and pvpython then reaches the other run's server, whose cookie it lacks: "bad X
+# server connection. DISPLAY=:99. Aborting." (seen once in CI, exit 134, before any of our code
+# ran). So the search starts at a random number, and a run whose X connection failed is repeated
+# (up to three times) with another; a failure of render.py itself is not retried.
+x_failures = ("bad X server connection", "Xvfb failed to start", "cannot open display", "Can't open display")
+for attempt in range(3):
+    server = random.SystemRandom().randrange(100, 30000)
+    cmd = ["xvfb-run", "-n", str(server), "-a", "pvpython", os.path.join(repo, "scripts/render.py"), result,
+           "-o", outdir, "--frames", "2", "--size", "400x300", "--no-annotations"]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=240)
+    if p.returncode == 0 or not any(m in p.stdout + p.stderr for m in x_failures):
+        break
+    print(f"attempt {attempt + 1}: no X server for pvpython (display :{server} and up), trying again")
 assert p.returncode == 0, f"{' '.join(cmd)}: exit {p.returncode}\n{p.stdout}\n{p.stderr}"
 frames = sorted(f for f in os.listdir(outdir) if f.startswith(name + "_") and f.endswith(".png"))
 assert frames == [f"{name}_0000.png", f"{name}_0001.png"], frames
