@@ -4,7 +4,7 @@
 set -euo pipefail
 # libblas-dev and liblapack-dev (which petsc-dev pulls in too): cblas.h and the link names of the
 # BLAS and LAPACK that alphaflex's own small dense kernels call (CMakeLists.txt), OpenBLAS below.
-PKGS=(build-essential cmake pkg-config git
+PKGS=(build-essential cmake ninja-build pkg-config git
       petsc-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev
       libblas-dev liblapack-dev libopenblas0-serial libgmsh-dev gmsh libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libsundials-dev hyperfine
       slepc-dev python3-matplotlib python3-numpy python3-h5py python3-scipy paraview python3-paraview xvfb)
