@@ -5,7 +5,8 @@ if(NOT EXISTS "${EXE}")
   add_test("${PREFIX}not_built" "${EXE}")
   return()
 endif()
-execute_process(COMMAND "${EXE}" --gtest_list_tests WORKING_DIRECTORY "${WORKDIR}" TIMEOUT 60
+# ENVIRONMENT: the sanitizers' options for a sanitized EXE (without them LeakSanitizer fails the listing).
+execute_process(COMMAND "${CMAKE_EXE}" -E env ${ENVIRONMENT} "${EXE}" --gtest_list_tests WORKING_DIRECTORY "${WORKDIR}" TIMEOUT 60
                 OUTPUT_VARIABLE listing ERROR_VARIABLE listing_error RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "${EXE} --gtest_list_tests failed (${rc}): ${listing_error}")
@@ -17,5 +18,8 @@ foreach(line IN LISTS lines)
     set(suite "${CMAKE_MATCH_1}")
     add_test("${PREFIX}${suite}" "${EXE}" "--gtest_filter=${suite}.*")
     set_tests_properties("${PREFIX}${suite}" PROPERTIES WORKING_DIRECTORY "${WORKDIR}" TIMEOUT "${TIMEOUT}")
+    if(ENVIRONMENT)
+      set_tests_properties("${PREFIX}${suite}" PROPERTIES ENVIRONMENT "${ENVIRONMENT}")
+    endif()
   endif()
 endforeach()
