@@ -16,6 +16,11 @@ foreach(line IN LISTS lines)
   # Suite lines start in column 1 and end with '.', test lines are indented.
   if(line MATCHES "^([^ #][^ ]*)\\.")
     set(suite "${CMAKE_MATCH_1}")
+    # EXCLUDED_SUITES: run by another binary (unit_tests_slow, tests/CMakeLists.txt).
+    list(FIND EXCLUDED_SUITES "${suite}" excluded)
+    if(NOT excluded EQUAL -1)
+      continue()
+    endif()
     add_test("${PREFIX}${suite}" "${EXE}" "--gtest_filter=${suite}.*")
     set_tests_properties("${PREFIX}${suite}" PROPERTIES WORKING_DIRECTORY "${WORKDIR}" TIMEOUT "${TIMEOUT}")
     if(ENVIRONMENT)
