@@ -106,12 +106,20 @@ const Quadrature& quadrature(int n) {
   return n == 4 ? quad : tri;
 }
 
-/// The covariant strains as bilinear forms in U = (x_1 … x_n, d_1 … d_n, E_1 … E_n): s = ½ Σ_ab
-/// Q_ab U_a·U_b, E_e the geodesic edge differences of the directors (n edges: 4 or 3). Built at this
-/// full size; the linear interpolation never uses the E rows and drops them (ReissnerMindlinShell).
+/// The covariant strains as bilinear forms in U = (x_1 … x_n, d_1 … d_n, E_1 … E_n, Y_1 … Y_n):
+/// s = ½ Σ_ab Q_ab U_a·U_b, E_e the geodesic edge differences of the directors and Y_e the edges'
+/// arc vectors (n edges: 4 or 3; edge_arc_rows). Built at this full size; an element drops the rows
+/// its options do not use (ReissnerMindlinShell).
 using Form = Eigen::MatrixXd;
 
-Form zero_form(int n) { return Form::Zero(3 * n, 3 * n); }
+Form zero_form(int n) { return Form::Zero(4 * n, 4 * n); }
+
+/// ½ w Y_e·Y_e: an edge's membrane stretch measured along its arc (membrane_edges: arc).
+Form arc_edge_form(int n, int e, double w) {
+  Form Q = zero_form(n);
+  Q(3 * n + e, 3 * n + e) = w;
+  return Q;
+}
 
 /// ε_αβ (2 × Voigt shear for α ≠ β): ½ (a_α·a_β) (× 2 for the shear entry).
 Form membrane_form(const Shape& s, int n, int a, int b) {
@@ -125,19 +133,27 @@ Form membrane_form(const Shape& s, int n, int a, int b) {
 }
 
 /// κ_αβ = ½ (a_α·d,β + a_β·d,α) (Voigt: 2κ12 = a1·d,2 + a2·d,1), with d,α = Σ_J N_J,α d_J (linear)
-/// or d,α = Σ_e c(α, e) E_e (geodesic: `edges` = edge_gradient at the point).
-Form bending_form(const Shape& s, int n, int a, int b, const Eigen::MatrixXd* edges) {
-  const Eigen::VectorXd& Da = a == 0 ? s.dN1 : s.dN2;
-  const Eigen::VectorXd& Db = b == 0 ? s.dN1 : s.dN2;
+/// or d,α = Σ_e c(α, e) E_e (geodesic: `geodesic` = edge_gradient at the point); a_α = Σ_I N_I,α x_I,
+/// or with `arc` (= edge_gradient at the point) a_α = Σ_e c(α, e) Y_e, the same gradient of the
+/// edges' arc vectors (the chords' gradient is a_α exactly, as for E_e = Δ_e above): the tangent
+/// vectors that the membrane strains measure (membrane_edges: arc).
+Form bending_form(const Shape& s, int n, int a, int b, const Eigen::MatrixXd* geodesic, const Eigen::MatrixXd* arc) {
   Form Q = zero_form(n);
   const double f = a == b ? 0.5 : 1.0;
+  // the tangent a_α as Σ_i ta(α, i) over rows i (positions, or arc rows), d,α as Σ_j td(α, j)
+  Eigen::MatrixXd ta(2, n), td(2, n);
+  Eigen::MatrixXd dN(2, n);
+  dN.row(0) = s.dN1.transpose();
+  dN.row(1) = s.dN2.transpose();
+  ta = arc ? *arc : dN;
+  td = geodesic ? *geodesic : dN;
+  const int row0 = arc ? 3 * n : 0, col0 = geodesic ? 2 * n : n;
   for (int I = 0; I < n; ++I)
     for (int J = 0; J < n; ++J) {
-      // coefficient of x_I·d_J, or of x_I·E_J
-      const double c = edges ? f * (Da[I] * (*edges)(b, J) + Db[I] * (*edges)(a, J)) : f * (Da[I] * Db[J] + Db[I] * Da[J]);
-      const int col = (edges ? 2 * n : n) + J;
-      Q(I, col) += c;
-      Q(col, I) += c;
+      // coefficient of (x_I or Y_I)·(d_J or E_J)
+      const double c = f * (ta(a, I) * td(b, J) + ta(b, I) * td(a, J));
+      Q(row0 + I, col0 + J) += c;
+      Q(col0 + J, row0 + I) += c;
     }
   return Q;
 }
@@ -160,7 +176,27 @@ Form shear_form(const Shape& s, int n, int a) {
 ///  MITC3 (Lee & Bathe 2004): tangential strains at the edge midpoints (1) (½, 0), (2) (0, ½),
 ///    (3) (½, ½), with the field γ_r = a1 + c s, γ_s = a2 − c r: a1 = γ_r^(1), a2 = γ_s^(2) and
 ///    γ_s − γ_r at (3) equal to its tied value, c = γ_r^(3) − γ_s^(3) − γ_r^(1) + γ_s^(2).
-std::array<Form, 2> assumed_shear(int n, double xi, double eta) {
+/// Y_e·½(d_I + d_J): the tangential shear strain along edge e (I → J) at its midpoint, on the arc row
+/// (membrane_edges: arc; on the chord c_e = x_J − x_I it is a_α·d at the tying point, a_α = c_e or ½c_e).
+Form arc_shear_form(int n, int e, double w) {
+  Form Q = zero_form(n);
+  for (int end = 0; end < 2; ++end) {
+    const int J = n + edge_node(n, e, end);
+    Q(3 * n + e, J) += 0.5 * w;
+    Q(J, 3 * n + e) += 0.5 * w;
+  }
+  return Q;
+}
+
+std::array<Form, 2> assumed_shear(int n, double xi, double eta, bool arc) {
+  if (arc) {  // the same tied fields, on the edges' arc vectors (a_ξ = ½c_e at (0, ±1), a_η at (±1, 0))
+    if (n == 4)
+      return {0.5 * (1 + eta) * arc_shear_form(4, 1, 0.5) + 0.5 * (1 - eta) * arc_shear_form(4, 0, 0.5),
+              0.5 * (1 + xi) * arc_shear_form(4, 3, 0.5) + 0.5 * (1 - xi) * arc_shear_form(4, 2, 0.5)};
+    // γ_r(1) = c_0·d, γ_s(2) = c_1·d, γ_r(3) − γ_s(3) = −c_2·d (edge 2 = 2→3 = a_2 − a_1)
+    const Form c = -arc_shear_form(3, 2, 1.0) - arc_shear_form(3, 0, 1.0) + arc_shear_form(3, 1, 1.0);
+    return {arc_shear_form(3, 0, 1.0) + eta * c, arc_shear_form(3, 1, 1.0) - xi * c};
+  }
   if (n == 4) {
     const Shape A = shape(4, 0, 1), B = shape(4, -1, 0), C = shape(4, 0, -1), D = shape(4, 1, 0);
     return {0.5 * (1 + eta) * shear_form(A, 4, 0) + 0.5 * (1 - eta) * shear_form(C, 4, 0),
@@ -174,7 +210,7 @@ std::array<Form, 2> assumed_shear(int n, double xi, double eta) {
 /// The 8 forms at one point: ε11, ε22, 2ε12, κ11, κ22, 2κ12, γ1, γ2 (natural, covariant). `X`: the
 /// element's reference node positions (the quadrilateral's assumed membrane strains depend on its
 /// geometry, below).
-std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X, bool geodesic);
+std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X, bool geodesic, bool arc);
 
 /// The quadrilateral's assumed membrane strains, against membrane locking in curved shells:
 /// ε11 tied at the edge midpoints (0, ±1), ε22 at (±1, 0), ε12 at the centre (as the MITC4 shear,
@@ -183,7 +219,11 @@ std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::M
 /// covariant components A_α(P)·Ē·A_β(P) vary over a non-parallelogram, and the tying would miss
 /// that variation; adding f(P) − ANS[f](P) with f_αβ(P) = A_α(P)·Ē·A_β(P) and Ē the strain at the
 /// centre makes every homogeneous deformation exact, and vanishes on parallelograms.
-std::array<Form, 3> assumed_membrane(double xi, double eta, const Eigen::MatrixXd& X) {
+/// `arc`: the tied values ε11(0, ±1) = ⅛|x_2 − x_1|², ⅛|x_3 − x_4|² and ε22(±1, 0) are the edges'
+/// stretches; they are measured along the edges' arcs, ⅛|Y_e|² (edge_arc_rows), instead of their
+/// chords. The correction f − ANS[f] stays on the chords: it vanishes on parallelograms and
+/// concerns the reference geometry only.
+std::array<Form, 3> assumed_membrane(double xi, double eta, const Eigen::MatrixXd& X, bool arc) {
   auto plain = [](double x, double e) {
     const Shape s = shape(4, x, e);
     return std::array<Form, 3>{membrane_form(s, 4, 0, 0), membrane_form(s, 4, 1, 1), membrane_form(s, 4, 0, 1)};
@@ -216,35 +256,50 @@ std::array<Form, 3> assumed_membrane(double xi, double eta, const Eigen::MatrixX
     return std::array<Form, 3>{0.5 * (1 + eta) * A[0] + 0.5 * (1 - eta) * C[0],
                                0.5 * (1 + xi) * D[1] + 0.5 * (1 - xi) * B[1], O[2]};
   };
-  const auto ans = tied(plain), ans_f = tied(f_at), f = f_at(xi, eta);
+  auto ans = tied(plain);
+  if (arc) {  // edges (kQuadEdges) 0: 1→2 at η = −1, 1: 4→3 at η = 1, 2: 1→4 at ξ = −1, 3: 2→3 at ξ = 1
+    ans[0] = 0.5 * (1 + eta) * arc_edge_form(4, 1, 0.25) + 0.5 * (1 - eta) * arc_edge_form(4, 0, 0.25);
+    ans[1] = 0.5 * (1 + xi) * arc_edge_form(4, 3, 0.25) + 0.5 * (1 - xi) * arc_edge_form(4, 2, 0.25);
+    // 2ε12 at the centre: a_ξ·a_η with a_ξ(0) = ¼(c_0 + c_1), a_η(0) = ¼(c_2 + c_3), on the arc rows.
+    ans[2] = zero_form(4);
+    for (int e : {0, 1})
+      for (int f : {2, 3}) ans[2](12 + e, 12 + f) = ans[2](12 + f, 12 + e) = 1.0 / 16;
+  }
+  const auto ans_f = tied(f_at), f = f_at(xi, eta);
   return {ans[0] + f[0] - ans_f[0], ans[1] + f[1] - ans_f[1], ans[2] + f[2] - ans_f[2]};
 }
 
-std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X, bool geodesic) {
+std::array<Form, kStrains> forms_at(int n, double xi, double eta, const Eigen::MatrixXd& X, bool geodesic, bool arc) {
   const Shape s = shape(n, xi, eta);
   const Eigen::MatrixXd c = edge_gradient(n, xi, eta);
   const Eigen::MatrixXd* edges = geodesic ? &c : nullptr;
-  const auto g = assumed_shear(n, xi, eta);
-  const std::array<Form, 3> m = n == 4 ? assumed_membrane(xi, eta, X)
-                                       : std::array<Form, 3>{membrane_form(s, n, 0, 0), membrane_form(s, n, 1, 1),
-                                                             membrane_form(s, n, 0, 1)};
-  return {m[0], m[1], m[2], bending_form(s, n, 0, 0, edges), bending_form(s, n, 1, 1, edges), bending_form(s, n, 0, 1, edges),
-          g[0], g[1]};
+  const auto g = assumed_shear(n, xi, eta, arc);
+  // The triangle's (constant) metric from its three edges (kTriEdges: 0 = 1→2 = a_1, 1 = 1→3 = a_2,
+  // 2 = 2→3 = a_2 − a_1): a_1·a_1 = |e_0|², a_2·a_2 = |e_1|², a_1·a_2 = ½(|e_0|² + |e_1|² − |e_2|²).
+  const std::array<Form, 3> m =
+      n == 4 ? assumed_membrane(xi, eta, X, arc)
+      : arc  ? std::array<Form, 3>{arc_edge_form(3, 0, 1.0), arc_edge_form(3, 1, 1.0),
+                                   Form(arc_edge_form(3, 0, 1.0) + arc_edge_form(3, 1, 1.0) - arc_edge_form(3, 2, 1.0))}
+             : std::array<Form, 3>{membrane_form(s, n, 0, 0), membrane_form(s, n, 1, 1), membrane_form(s, n, 0, 1)};
+  const Eigen::MatrixXd* arcs = arc ? &c : nullptr;
+  return {m[0], m[1], m[2], bending_form(s, n, 0, 0, edges, arcs), bending_form(s, n, 1, 1, edges, arcs),
+          bending_form(s, n, 0, 1, edges, arcs), g[0], g[1]};
 }
 
 /// All forms of an element, quadrature point by quadrature point: the triangle's are the same for
 /// every element (shared), the quadrilateral's membrane forms depend on its reference geometry.
-std::shared_ptr<const std::vector<Form>> element_forms(int n, const Eigen::MatrixXd& X, bool geodesic) {
-  auto build = [](int nn, const Eigen::MatrixXd& XX, bool geo) {
+std::shared_ptr<const std::vector<Form>> element_forms(int n, const Eigen::MatrixXd& X, bool geodesic, bool arc) {
+  auto build = [](int nn, const Eigen::MatrixXd& XX, bool geo, bool a) {
     auto f = std::make_shared<std::vector<Form>>();
     for (const auto& p : quadrature(nn).points)
-      for (const Form& q : forms_at(nn, p[0], p[1], XX, geo)) f->push_back(q);
+      for (const Form& q : forms_at(nn, p[0], p[1], XX, geo, a)) f->push_back(q);
     return f;
   };
-  if (n == 4) return build(4, X, geodesic);
-  static const std::shared_ptr<const std::vector<Form>> tri[2] = {build(3, Eigen::MatrixXd::Zero(3, 3), false),
-                                                                  build(3, Eigen::MatrixXd::Zero(3, 3), true)};
-  return tri[geodesic ? 1 : 0];
+  if (n == 4) return build(4, X, geodesic, arc);
+  static const std::shared_ptr<const std::vector<Form>> tri[4] = {
+      build(3, Eigen::MatrixXd::Zero(3, 3), false, false), build(3, Eigen::MatrixXd::Zero(3, 3), true, false),
+      build(3, Eigen::MatrixXd::Zero(3, 3), false, true), build(3, Eigen::MatrixXd::Zero(3, 3), true, true)};
+  return tri[(geodesic ? 1 : 0) + (arc ? 2 : 0)];
 }
 
 /// The rows E_e = h(|Δ_e|²) Δ_e, Δ_e = d_J − d_I, of U (rows 2n … 2n + m − 1) from its director rows.
@@ -252,6 +307,65 @@ void geodesic_edge_rows(int n, int m, Eigen::MatrixXd& U) {
   for (int e = 0; e < m; ++e) {
     const Eigen::RowVector3d D = U.row(n + edge_node(n, e, 1)) - U.row(n + edge_node(n, e, 0));
     U.row(2 * n + e) = arc_over_chord(D.squaredNorm()).h * D;
+  }
+}
+
+/// An edge's arc vector Y = h(p) c, c = x_J − x_I, p = (Δ·c)²/(c·c), Δ = d_J − d_I: the chord
+/// lengthened to the circular arc whose end normals are the directors. For a plane arc through the
+/// two nodes turning by φ, Δ = ±2 sin(φ/2) ĉ + (a part normal to the chord: none), so √p = 2 sin(φ/2)
+/// and h(p) = φ/(2 sin(φ/2)) = arc/chord; a twist of the directors about the edge (Δ ⟂ c) leaves the
+/// edge's length alone. The derivatives for the chain rule: J = ∂Y/∂(c, Δ) (3 × 6) and, for a weight
+/// w = ∂W/∂Y, the Hessian of w·Y in (c, Δ) (6 × 6).
+struct EdgeArc {
+  Eigen::Vector3d Y;
+  Eigen::Matrix<double, 3, 6> J;
+  Eigen::Vector3d c, gp_c, gp_D;  // c and ∇p
+  ArcOverChord h;
+  double s = 0, nn = 0, p = 0;
+};
+
+EdgeArc edge_arc(const Eigen::Vector3d& c, const Eigen::Vector3d& D) {
+  EdgeArc a;
+  a.c = c;
+  a.s = D.dot(c);
+  a.nn = c.squaredNorm();
+  a.p = a.s * a.s / a.nn;
+  a.h = arc_over_chord(std::min(a.p, 4.0));
+  // ∇p = (2s/n) ∇s − (s²/n²) ∇n, ∇s = (Δ, c), ∇n = (2c, 0).
+  a.gp_c = (2 * a.s / a.nn) * D - (2 * a.s * a.s / (a.nn * a.nn)) * c;
+  a.gp_D = (2 * a.s / a.nn) * c;
+  a.Y = a.h.h * c;
+  a.J.leftCols<3>() = a.h.h * Eigen::Matrix3d::Identity() + a.h.dh * c * a.gp_c.transpose();
+  a.J.rightCols<3>() = a.h.dh * c * a.gp_D.transpose();
+  return a;
+}
+
+/// ∂²(w·Y)/∂(c, Δ)²: with u = w·c, w·Y = h(p) u and
+/// ∇² = h'' u ∇p∇pᵀ + h' u ∇²p + h' (∇p ∇uᵀ + ∇u ∇pᵀ), ∇u = (w, 0),
+/// ∇²p = (2/n) ∇s∇sᵀ − (2s/n²)(∇s∇nᵀ + ∇n∇sᵀ) + (2s²/n³) ∇n∇nᵀ + (2s/n) ∇²s − (s²/n²) ∇²n.
+Eigen::Matrix<double, 6, 6> edge_arc_hessian(const EdgeArc& a, const Eigen::Vector3d& D, const Eigen::Vector3d& w) {
+  using V6 = Eigen::Matrix<double, 6, 1>;
+  using M6 = Eigen::Matrix<double, 6, 6>;
+  const double n = a.nn, s = a.s, u = w.dot(a.c);
+  V6 gs, gn, gp, gu;
+  gs << D, a.c;
+  gn << 2 * a.c, Eigen::Vector3d::Zero();
+  gp << a.gp_c, a.gp_D;
+  gu << w, Eigen::Vector3d::Zero();
+  M6 H2s = M6::Zero(), H2n = M6::Zero();
+  H2s.topRightCorner<3, 3>().setIdentity();
+  H2s.bottomLeftCorner<3, 3>().setIdentity();
+  H2n.topLeftCorner<3, 3>() = 2 * Eigen::Matrix3d::Identity();
+  const M6 H2p = (2 / n) * gs * gs.transpose() - (2 * s / (n * n)) * (gs * gn.transpose() + gn * gs.transpose()) +
+                 (2 * s * s / (n * n * n)) * gn * gn.transpose() + (2 * s / n) * H2s - (s * s / (n * n)) * H2n;
+  return a.h.d2h * u * gp * gp.transpose() + a.h.dh * u * H2p + a.h.dh * (gp * gu.transpose() + gu * gp.transpose());
+}
+
+/// The rows Y_e (rows r0 … r0 + m − 1 of U) from its position and director rows.
+void edge_arc_rows(int n, int m, int r0, Eigen::MatrixXd& U) {
+  for (int e = 0; e < m; ++e) {
+    const int I = edge_node(n, e, 0), J = edge_node(n, e, 1);
+    U.row(r0 + e) = edge_arc((U.row(J) - U.row(I)).transpose(), (U.row(n + J) - U.row(n + I)).transpose()).Y.transpose();
   }
 }
 
@@ -463,9 +577,16 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
   // element, so that ∫ δε̂ dA = ∫ δε dA: constant stresses see no difference (the second half of the
   // patch test; the first, exact homogeneous strains, is assumed_membrane's correction).
   const bool geodesic = options.director_interpolation == DirectorInterpolation::geodesic;
+  const bool arc = options.membrane_edges == MembraneEdges::arc;
   m_ = geodesic ? n_ : 0;
-  auto forms = element_forms(n_, X, geodesic);
+  k_ = arc ? n_ : 0;
+  // membrane_edges: arc. The triangle's membrane strains are its edges' stretches: they take the arcs
+  // directly. The quadrilateral's tied strains take them as an increment (arc − chord, at the tying
+  // points) added after the correction below, which is built on the chords: subtracting the
+  // element mean of the increment too would leave the element's mean membrane strain on the chords.
+  auto forms = element_forms(n_, X, geodesic, arc && n_ == 3);
   if (n_ == 4) {
+    const auto arc_forms = arc ? element_forms(4, X, geodesic, true) : nullptr;
     auto own = std::make_shared<std::vector<Form>>(*forms);
     std::vector<std::array<Form, 3>> delta(static_cast<size_t>(ngp));
     std::array<Form, 3> mean = {zero_form(4), zero_form(4), zero_form(4)};
@@ -477,8 +598,10 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
       for (int i = 0; i < 3; ++i) {
         Form d = zero_form(4), c = zero_form(4);
         for (int k = 0; k < 3; ++k) {
-          d += Tm(i, k) * ((*forms)[static_cast<size_t>(kStrains * p + k)] - plain[static_cast<size_t>(k)]);
+          const auto K = static_cast<size_t>(kStrains * p + k);
+          d += Tm(i, k) * ((*forms)[K] - plain[static_cast<size_t>(k)]);
           c += Tm(i, k) * plain[static_cast<size_t>(k)];
+          if (arc_forms) c += Tm(i, k) * ((*arc_forms)[K] - (*forms)[K]);
         }
         delta[static_cast<size_t>(p)][static_cast<size_t>(i)] = d;
         mean[static_cast<size_t>(i)] += (wj_[static_cast<size_t>(p)] / area_) * d;
@@ -488,13 +611,19 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
     for (int p = 0; p < ngp; ++p) {
       for (int i = 0; i < 3; ++i)
         (*own)[static_cast<size_t>(kStrains * p + i)] += delta[static_cast<size_t>(p)][static_cast<size_t>(i)] - mean[static_cast<size_t>(i)];
+      if (arc_forms)  // the bending and shear strains on the arc rows too
+        for (int i = 3; i < kStrains; ++i) (*own)[static_cast<size_t>(kStrains * p + i)] = (*arc_forms)[static_cast<size_t>(kStrains * p + i)];
       T_.block<3, 3>(kStrains * p, 0).setIdentity();
     }
     forms = own;
   }
-  if (!geodesic) {  // the E rows are unused: drop them (the forms' cost grows with their size squared)
+  if (!geodesic || !arc) {  // drop the E or Y rows an option leaves unused (the forms' cost grows with their size squared)
+    std::vector<int> keep;
+    for (int a = 0; a < 2 * n_; ++a) keep.push_back(a);
+    for (int e = 0; e < m_; ++e) keep.push_back(2 * n_ + e);
+    for (int e = 0; e < k_; ++e) keep.push_back(3 * n_ + e);
     auto own = std::make_shared<std::vector<Form>>();
-    for (const Form& f : *forms) own->push_back(f.topLeftCorner(2 * n_, 2 * n_));
+    for (const Form& f : *forms) own->push_back(f(keep, keep));
     forms = own;
   }
   forms_ = forms;
@@ -521,10 +650,11 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
   S_ = S;
 
   // Reference values of the forms.
-  Eigen::MatrixXd U0(2 * n_ + m_, 3);
+  Eigen::MatrixXd U0(2 * n_ + m_ + k_, 3);
   U0.topRows(n_) = X;
   U0.middleRows(n_, n_) = D0;
   geodesic_edge_rows(n_, m_, U0);
+  edge_arc_rows(n_, k_, 2 * n_ + m_, U0);
   s0_ = form_values(*forms_, U0);
 
   // Drilling: ω_I = Σ_J x_J·R_I g_IJ (header), g_IJ = ½ (c_J1 P_I2 − c_J2 P_I1), c_Jβ = N_J,α(centre) (A^α·e_β),
@@ -549,7 +679,7 @@ ReissnerMindlinShell::ReissnerMindlinShell(std::string name, std::vector<int> no
 
 void ReissnerMindlinShell::nodal_vectors(const Eigen::VectorXd& q, Eigen::MatrixXd& U,
                                          std::array<Eigen::Matrix3d, kMaxNodes>& R) const {
-  U.resize(2 * n_ + m_, 3);
+  U.resize(2 * n_ + m_ + k_, 3);
   for (int I = 0; I < n_; ++I) {
     const Pose<double> p = pose_of(q.data() + 7 * I);
     R[static_cast<size_t>(I)] = p.R;
@@ -557,6 +687,7 @@ void ReissnerMindlinShell::nodal_vectors(const Eigen::VectorXd& q, Eigen::Matrix
     U.row(n_ + I) = (p.R * dbar_[static_cast<size_t>(I)]).transpose();
   }
   geodesic_edge_rows(n_, m_, U);
+  edge_arc_rows(n_, k_, 2 * n_ + m_, U);
 }
 
 double ReissnerMindlinShell::elastic_energy(const Eigen::VectorXd& q) const {
@@ -582,106 +713,125 @@ void ReissnerMindlinShell::elastic_forces(const Eigen::VectorXd& q, Eigen::Vecto
   const Eigen::VectorXd sigma = C_ * (form_values(Q, U) - s0_);
 
   // r_U = (Σ σ_k Q_k) U.
-  const int rows = 2 * n_ + m_;
+  const int rows = 2 * n_ + m_ + k_, y0 = 2 * n_ + m_;
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(rows, rows);
   for (int k = 0; k < nf; ++k) G += sigma[k] * Q[static_cast<size_t>(k)];
   const Eigen::MatrixXd rU = G * U;
-  // δd_I = Λ_I δθ_I, Λ_I = −R_I D̄_I^; δE_e = J_e (δd_J − δd_I), J_e = h I + 2h' Δ Δᵀ (geodesic edges,
-  // E_e = h(|Δ|²) Δ, Δ = d_J − d_I).
-  std::array<Eigen::Matrix3d, kMaxNodes> Lam, Je;
-  std::array<Eigen::Vector3d, kMaxNodes> Dl;
-  std::array<ArcOverChord, kMaxNodes> ac;
+  // Every row a of U varies with the nodal motions as δU_a = Σ_b M_ab δz_b over a few blocks
+  // (column of δx_I or δθ_I, 3 × 3 matrix): a position row δx_I; a director row δd_I = Λ_I δθ_I,
+  // Λ_I = −R_I D̄_I^; a geodesic edge row δE_e = J_e (δd_J − δd_I), J_e = h I + 2h' Δ Δᵀ
+  // (E_e = h(|Δ|²) Δ, Δ = d_J − d_I); an arc row δY_e = J_c (δx_J − δx_I) + J_Δ (δd_J − δd_I) (edge_arc).
+  struct Chain {
+    int size = 0;
+    std::array<std::pair<int, Eigen::Matrix3d>, 4> block;
+    bool identity = false;  // a position row: one block, the identity (skips the products below)
+    void add(int column, const Eigen::Matrix3d& M) { block[static_cast<size_t>(size++)] = {column, M}; }
+  };
+  std::array<Eigen::Matrix3d, kMaxNodes> Lam;
   for (int I = 0; I < n_; ++I) Lam[static_cast<size_t>(I)] = -R[static_cast<size_t>(I)] * hat3(dbar_[static_cast<size_t>(I)]);
-  Eigen::MatrixXd rd_edges;  // r_d with the edges' part chained in (geodesic only; else rows n … 2n − 1 of r_U)
-  if (m_ > 0) rd_edges = rU.middleRows(n_, n_);
+  const bool chains = Kout != nullptr;  // the chains are for K only
+  std::array<Chain, 4 * kMaxNodes> chain;
+  std::array<Eigen::Vector3d, kMaxNodes> Dl, Dy;
+  std::array<ArcOverChord, kMaxNodes> ac;
+  std::array<Eigen::Matrix3d, kMaxNodes> Je;
+  std::array<EdgeArc, kMaxNodes> arcs;
+  for (int I = 0; chains && I < n_; ++I) {
+    chain[static_cast<size_t>(I)].add(6 * I, Eigen::Matrix3d::Identity());
+    chain[static_cast<size_t>(I)].identity = true;
+    chain[static_cast<size_t>(n_ + I)].add(6 * I + 3, Lam[static_cast<size_t>(I)]);
+  }
+  // r_x, r_d: the residual on the positions and on the directors (before Λ), every row chained in.
+  using NodeRows = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor, kMaxNodes, 3>;  // no heap
+  NodeRows rx = rU.topRows(n_), rd = rU.middleRows(n_, n_);
   for (int e = 0; e < m_; ++e) {
     const auto E = static_cast<size_t>(e);
-    Dl[E] = (U.row(n_ + edge_node(n_, e, 1)) - U.row(n_ + edge_node(n_, e, 0))).transpose();
+    const int I = edge_node(n_, e, 0), J = edge_node(n_, e, 1);
+    Dl[E] = (U.row(n_ + J) - U.row(n_ + I)).transpose();
     ac[E] = arc_over_chord(Dl[E].squaredNorm());
     Je[E] = ac[E].h * Eigen::Matrix3d::Identity() + 2 * ac[E].dh * Dl[E] * Dl[E].transpose();
+    if (chains) {
+      chain[static_cast<size_t>(2 * n_ + e)].add(6 * J + 3, Je[E] * Lam[static_cast<size_t>(J)]);
+      chain[static_cast<size_t>(2 * n_ + e)].add(6 * I + 3, -Je[E] * Lam[static_cast<size_t>(I)]);
+    }
     const Eigen::RowVector3d rD = rU.row(2 * n_ + e) * Je[E];
-    rd_edges.row(edge_node(n_, e, 1)) += rD;
-    rd_edges.row(edge_node(n_, e, 0)) -= rD;
+    rd.row(J) += rD;
+    rd.row(I) -= rD;
   }
-  const Eigen::MatrixXd& rdv = m_ > 0 ? rd_edges : rU;
-  const int rd0 = m_ > 0 ? 0 : n_;  // row of r_d,1 in rdv
+  for (int e = 0; e < k_; ++e) {
+    const auto E = static_cast<size_t>(e);
+    const int I = edge_node(n_, e, 0), J = edge_node(n_, e, 1);
+    Dy[E] = (U.row(n_ + J) - U.row(n_ + I)).transpose();
+    arcs[E] = edge_arc((U.row(J) - U.row(I)).transpose(), Dy[E]);
+    const Eigen::Matrix3d Jc = arcs[E].J.leftCols<3>(), JD = arcs[E].J.rightCols<3>();
+    if (chains) {
+      Chain& ch = chain[static_cast<size_t>(y0 + e)];
+      ch.add(6 * J, Jc);
+      ch.add(6 * I, -Jc);
+      ch.add(6 * J + 3, JD * Lam[static_cast<size_t>(J)]);
+      ch.add(6 * I + 3, -JD * Lam[static_cast<size_t>(I)]);
+    }
+    const Eigen::RowVector3d rc = rU.row(y0 + e) * Jc, rD = rU.row(y0 + e) * JD;
+    rx.row(J) += rc;
+    rx.row(I) -= rc;
+    rd.row(J) += rD;
+    rd.row(I) -= rD;
+  }
   r = Eigen::VectorXd::Zero(nd);
   for (int I = 0; I < n_; ++I) {
-    r.segment<3>(6 * I) = rU.row(I).transpose();
-    r.segment<3>(6 * I + 3) = Lam[static_cast<size_t>(I)].transpose() * rdv.row(rd0 + I).transpose();
+    r.segment<3>(6 * I) = rx.row(I).transpose();
+    r.segment<3>(6 * I + 3) = Lam[static_cast<size_t>(I)].transpose() * rd.row(I).transpose();
   }
   if (Kout) {
     Eigen::MatrixXd& K = *Kout;
-    // B P: row k = (Q_k U) mapped to (δx, δθ); an edge row E_e maps through δE_e = J_e (Λ_J δθ_J − Λ_I δθ_I).
-    std::array<Eigen::Matrix3d, kMaxNodes> JL0, JL1;  // J_e Λ_I, J_e Λ_J of edge e = (I, J)
-    for (int e = 0; e < m_; ++e) {
-      const auto E = static_cast<size_t>(e);
-      JL0[E] = Je[E] * Lam[static_cast<size_t>(edge_node(n_, e, 0))];
-      JL1[E] = Je[E] * Lam[static_cast<size_t>(edge_node(n_, e, 1))];
-    }
-    Eigen::MatrixXd BP(nf, nd);
+    // B P: row k = (Q_k U) carried to (δx, δθ) through the rows' chains.
+    Eigen::MatrixXd BP = Eigen::MatrixXd::Zero(nf, nd);
     for (int k = 0; k < nf; ++k) {
       const Eigen::MatrixXd QU = Q[static_cast<size_t>(k)] * U;
-      for (int I = 0; I < n_; ++I) {
-        BP.block<1, 3>(k, 6 * I) = QU.row(I);
-        BP.block<1, 3>(k, 6 * I + 3) = QU.row(n_ + I) * Lam[static_cast<size_t>(I)];
-      }
-      for (int e = 0; e < m_; ++e) {
-        const auto E = static_cast<size_t>(e);
-        BP.block<1, 3>(k, 6 * edge_node(n_, e, 1) + 3) += QU.row(2 * n_ + e) * JL1[E];
-        BP.block<1, 3>(k, 6 * edge_node(n_, e, 0) + 3) -= QU.row(2 * n_ + e) * JL0[E];
+      for (int a = 0; a < rows; ++a) {
+        const Chain& ch = chain[static_cast<size_t>(a)];
+        if (ch.identity) {
+          BP.block<1, 3>(k, ch.block[0].first) += QU.row(a);
+          continue;
+        }
+        for (int c = 0; c < ch.size; ++c) {
+          const auto& [col, M] = ch.block[static_cast<size_t>(c)];
+          BP.block<1, 3>(k, col) += QU.row(a) * M;
+        }
       }
     }
     K = BP.transpose() * C_ * BP;
-    // Pᵀ (G ⊗ I₃) P, block by block.
-    for (int I = 0; I < n_; ++I)
-      for (int J = 0; J < n_; ++J) {
-        const auto& LI = Lam[static_cast<size_t>(I)];
-        const auto& LJ = Lam[static_cast<size_t>(J)];
-        K.block<3, 3>(6 * I, 6 * J).diagonal().array() += G(I, J);
-        K.block<3, 3>(6 * I, 6 * J + 3) += G(I, n_ + J) * LJ;
-        K.block<3, 3>(6 * I + 3, 6 * J) += G(n_ + I, J) * LI.transpose();
-        K.block<3, 3>(6 * I + 3, 6 * J + 3) += G(n_ + I, n_ + J) * LI.transpose() * LJ;
-      }
-    // The edge rows against every row a of U: P_a as (column, matrix) pairs.
-    for (int e = 0; e < m_; ++e) {
-      const auto E = static_cast<size_t>(e);
-      const int cI = 6 * edge_node(n_, e, 0) + 3, cJ = 6 * edge_node(n_, e, 1) + 3, a = 2 * n_ + e;
-      for (int b = 0; b < 2 * n_ + m_; ++b) {
+    // Pᵀ (G ⊗ I₃) P: the forms' second derivatives, through the chains of both rows.
+    for (int a = 0; a < rows; ++a)
+      for (int b = 0; b < rows; ++b) {
         const double g = G(a, b);
         if (g == 0.0) continue;
-        if (b < n_) {  // a position row: P_b = I at δx_b (and the symmetric block)
-          K.block<3, 3>(cJ, 6 * b) += g * JL1[E].transpose();
-          K.block<3, 3>(cI, 6 * b) -= g * JL0[E].transpose();
-          K.block<3, 3>(6 * b, cJ) += g * JL1[E];
-          K.block<3, 3>(6 * b, cI) -= g * JL0[E];
+        const Chain& ca = chain[static_cast<size_t>(a)];
+        const Chain& cb = chain[static_cast<size_t>(b)];
+        if (ca.identity && cb.identity) {
+          K.block<3, 3>(ca.block[0].first, cb.block[0].first).diagonal().array() += g;
           continue;
         }
-        // a director row (P_b = Λ_b at δθ_b, both orders) or an edge row (the edge × edge blocks once)
-        std::array<std::pair<int, Eigen::Matrix3d>, 2> pb;
-        int nb = 1;
-        if (b < 2 * n_) {
-          pb[0] = {6 * (b - n_) + 3, Lam[static_cast<size_t>(b - n_)]};
-        } else {
-          const auto F = static_cast<size_t>(b - 2 * n_);
-          pb[0] = {6 * edge_node(n_, b - 2 * n_, 1) + 3, JL1[F]};
-          pb[1] = {6 * edge_node(n_, b - 2 * n_, 0) + 3, -JL0[F]};
-          nb = 2;
-        }
-        for (int c = 0; c < nb; ++c) {
-          const auto& [col, M] = pb[static_cast<size_t>(c)];
-          K.block<3, 3>(cJ, col) += g * JL1[E].transpose() * M;
-          K.block<3, 3>(cI, col) -= g * JL0[E].transpose() * M;
-          if (b < 2 * n_) {
-            K.block<3, 3>(col, cJ) += g * M.transpose() * JL1[E];
-            K.block<3, 3>(col, cI) -= g * M.transpose() * JL0[E];
+        if (ca.identity || cb.identity) {  // g M (column side) or g Mᵀ (row side)
+          const Chain& other = ca.identity ? cb : ca;
+          for (int j = 0; j < other.size; ++j) {
+            const auto& [c, M] = other.block[static_cast<size_t>(j)];
+            if (ca.identity)
+              K.block<3, 3>(ca.block[0].first, c) += g * M;
+            else
+              K.block<3, 3>(c, cb.block[0].first) += g * M.transpose();
           }
+          continue;
         }
+        for (int i = 0; i < ca.size; ++i)
+          for (int j = 0; j < cb.size; ++j) {
+            const auto& [ci, Mi] = ca.block[static_cast<size_t>(i)];
+            const auto& [cj, Mj] = cb.block[static_cast<size_t>(j)];
+            K.block<3, 3>(ci, cj) += g * Mi.transpose() * Mj;
+          }
       }
-    }
     // Second derivative of the director on the group: r_d·R ê_j ê_k D̄ = (w D̄ᵀ − (w·D̄) I)_kj, w = Rᵀ r_d.
     for (int I = 0; I < n_; ++I) {
-      const Eigen::Vector3d w = R[static_cast<size_t>(I)].transpose() * rdv.row(rd0 + I).transpose();
+      const Eigen::Vector3d w = R[static_cast<size_t>(I)].transpose() * rd.row(I).transpose();
       const Eigen::Vector3d& Db = dbar_[static_cast<size_t>(I)];
       K.block<3, 3>(6 * I + 3, 6 * I + 3) += w * Db.transpose() - w.dot(Db) * Eigen::Matrix3d::Identity();
     }
@@ -700,6 +850,22 @@ void ReissnerMindlinShell::elastic_forces(const Eigen::VectorXd& q, Eigen::Vecto
       K.block<3, 3>(6 * I + 3, 6 * I + 3) += LI.transpose() * H * LI;
       K.block<3, 3>(6 * I + 3, 6 * J + 3) -= LI.transpose() * H * LJ;
       K.block<3, 3>(6 * J + 3, 6 * I + 3) -= LJ.transpose() * H * LI;
+    }
+    // Second derivative of the arc rows: ∂²(w·Y)/∂(c, Δ)² (edge_arc_hessian), w = r_Y, carried to the
+    // motions by δc = δx_J − δx_I and δΔ = Λ_J δθ_J − Λ_I δθ_I.
+    for (int e = 0; e < k_; ++e) {
+      const auto E = static_cast<size_t>(e);
+      const int I = edge_node(n_, e, 0), J = edge_node(n_, e, 1);
+      const Eigen::Matrix<double, 6, 6> H = edge_arc_hessian(arcs[E], Dy[E], rU.row(y0 + e).transpose());
+      const std::array<std::array<std::pair<int, Eigen::Matrix3d>, 2>, 2> var = {
+          {{{{6 * J, Eigen::Matrix3d::Identity()}, {6 * I, -Eigen::Matrix3d::Identity()}}},
+           {{{6 * J + 3, Lam[static_cast<size_t>(J)]}, {6 * I + 3, -Lam[static_cast<size_t>(I)]}}}}};
+      for (int u = 0; u < 2; ++u)
+        for (int v = 0; v < 2; ++v) {
+          const Eigen::Matrix3d Huv = H.block<3, 3>(3 * u, 3 * v);
+          for (const auto& [ci, Mi] : var[static_cast<size_t>(u)])
+            for (const auto& [cj, Mj] : var[static_cast<size_t>(v)]) K.block<3, 3>(ci, cj) += Mi.transpose() * Huv * Mj;
+        }
     }
   }
 

@@ -78,11 +78,23 @@ struct ShellSection {
 ///            independent, identical in the linear range.
 enum class DirectorInterpolation { linear, geodesic };
 
+/// How the membrane strains tied at the edges measure an edge's stretch (docs/theory/shell.md).
+///  chord: the distance between the nodes, |x_J − x_I|. A flat element bent by a turn φ between
+///         its nodes' directors, without stretching its mid-surface, sees its chord shorten by
+///         1 − sin(φ/2)/(φ/2) ≈ φ²/24: a membrane strain that resists bending (2.9 % at 48°).
+///  arc:   the length of the circular arc through the nodes whose end normals are the directors,
+///         h(p) |x_J − x_I| with √p = |(d_J − d_I)·ĉ| = 2 sin(φ/2), h = φ/(2 sin(φ/2)): inextensible
+///         bending leaves the membrane unstrained at any turn per element (in the manner of the
+///         helicoidal interpolation of beams, Borri & Bottasso 1994). Identical to the chord to
+///         O(φ²) for a turn φ per element, objective, path independent.
+enum class MembraneEdges { chord, arc };
+
 struct ShellOptions {
   double drilling_factor = 1e-3;          ///< drilling stiffness / (G t), per area
   double drilling_inertia_factor = 1.0;   ///< drilling inertia / the node's rotary inertia
   bool eas = true;                        ///< EAS4 membrane modes (quadrilaterals)
   DirectorInterpolation director_interpolation = DirectorInterpolation::linear;  ///< bending strains
+  MembraneEdges membrane_edges = MembraneEdges::chord;                          ///< tied membrane strains
 };
 
 /// The geodesic distance φ = 2 asin(c/2) between two unit vectors over their chord c = |d_J − d_I|,
@@ -144,12 +156,14 @@ class ReissnerMindlinShell final : public Element {
   const ShellSection& section() const { return section_; }
 
  private:
-  /// U = (x_1 … x_n, d_1 … d_n, E_1 … E_m) (rows) and the nodes' rotations at q; the E_e are the
-  /// geodesic differences of the directors along the element's edges (geodesic interpolation only).
+  /// U = (x_1 … x_n, d_1 … d_n, E_1 … E_m, Y_1 … Y_k) (rows) and the nodes' rotations at q; the E_e
+  /// are the geodesic differences of the directors along the element's edges (geodesic
+  /// interpolation only), the Y_e the edges' arc vectors (membrane_edges: arc only).
   void nodal_vectors(const Eigen::VectorXd& q, Eigen::MatrixXd& U, std::array<Eigen::Matrix3d, kMaxNodes>& R) const;
 
   int n_ = 0;                 // nodes
   int m_ = 0;                 // edges whose geodesic director difference the bending strains use (0: linear)
+  int k_ = 0;                 // edges whose arc vector the membrane strains use (0: chord)
   ShellSection section_;
   ShellOptions options_;
   std::array<Eigen::Vector3d, kMaxNodes> dbar_;   // D̄_I = R_I0ᵀ D_I

@@ -88,6 +88,7 @@ std::vector<int> add_shell_elements(const Item& it, const MeshSurfaceBlock& bloc
   options.drilling_factor = k.number("drilling", options.drilling_factor);
   options.director_interpolation = k.choice("director_interpolation", 0) == 0 ? DirectorInterpolation::linear
                                                                             : DirectorInterpolation::geodesic;
+  options.membrane_edges = k.choice("membrane_edges", 0) == 0 ? MembraneEdges::chord : MembraneEdges::arc;
   const double kink = k.number("kink_angle", 20.0);
   const bool axis_given = k.has("material_axis");
   const Eigen::Vector3d axis = it.sb.blocks.placed(k.text("group"), k.direction("material_axis", Eigen::Vector3d::UnitX()));
@@ -170,6 +171,7 @@ void register_shells_3d(SceneTypes& t) {
       {"drilling", KeyType::Number, "–", "1e-3", "drilling penalty stiffness as a fraction of G·t per area (docs/theory/shell.md)", Range::positive(), "drilling stiffness factor (of G t)"},
       {"kink_angle", KeyType::Number, "°", "20", "an element whose normal at a node is further than this from the nodes' mean normal keeps its own director there (folds, T-junctions)", Range::positive(), "angle (degrees)"},
       {"director_interpolation", KeyType::Choice, "–", "linear", "how the bending strains see the director's turn between nodes: `geodesic` (arc length along each edge, exact for constant curvature) or `linear` (chord: curvature 2 sin(φ/2)/L_e for a turn φ per element; docs/theory/shell.md)", {}, "", "", {"linear", "geodesic"}},
+      {"membrane_edges", KeyType::Choice, "–", "chord", "how the membrane strains tied at the element edges measure an edge's stretch: `chord` (the distance between the nodes: bending by a turn φ per element shortens it by ≈ φ²/24) or `arc` (the circular arc whose end normals are the directors: inextensible bending leaves the membrane unstrained; docs/theory/shell.md)", {}, "", "", {"chord", "arc"}},
       {"reduction", KeyType::Map, "–", "– (the full mesh)", "`beams.reduction` (the same keys; interface points: named mesh points of the surface): the block as one reduced flexible body (docs/theory/reduced_bodies.md)"}}},
       {"name, group, thickness, material", read_shell_block});
   t.parts.push_back(&material_schema());
