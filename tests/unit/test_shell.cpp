@@ -297,34 +297,49 @@ TEST(ReissnerMindlinShell, DirectorInterpolationsHaveExactTangentsAndAreObjectiv
     }
 }
 
+/// A flat strip element (L_e × b in the x–y plane, director z, identity frames) and the same with
+/// its far end (nodes 1, 2) placed on a circle of radius ρ through the near end, turned by φ about −y.
+struct FlatStrip {
+  static constexpr double Le = 0.75, b = 1.0, t = 0.1;
+  ShellSection sec = ShellSection::isotropic(1.2e6, 0.0, 1.0, t);
+  std::vector<Pose<double>> ref;
+  std::vector<Eigen::Vector3d> dirs = std::vector<Eigen::Vector3d>(4, Eigen::Vector3d::UnitZ());
+  FlatStrip() {
+    for (const Eigen::Vector3d& x : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(Le, 0, 0), Eigen::Vector3d(Le, b, 0),
+                                     Eigen::Vector3d(0, b, 0)})
+      ref.push_back({x, Eigen::Matrix3d::Identity()});
+  }
+  std::vector<Pose<double>> on_circle(double phi, double rho) const {
+    std::vector<Pose<double>> p = ref;
+    for (int I : {1, 2}) {
+      p[static_cast<size_t>(I)].x = Eigen::Vector3d(rho * std::sin(phi), ref[static_cast<size_t>(I)].x.y(), rho * (1 - std::cos(phi)));
+      p[static_cast<size_t>(I)].R = exp_so3<double>(Eigen::Vector3d(0, -phi, 0));
+    }
+    return p;
+  }
+  ReissnerMindlinShell element(DirectorInterpolation interp, MembraneEdges edges) const {
+    ShellOptions opt;
+    opt.director_interpolation = interp;
+    opt.membrane_edges = edges;
+    opt.drilling_factor = 1e-12;  // not seen here: no in-plane rotation
+    return ReissnerMindlinShell("s", {0, 1, 2, 3}, sec, ref, dirs, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero(), opt);
+  }
+};
+
 // A strip element bent into a circular arc (nodes on the circle, directors radial, a turn φ between
 // its ends) has the curvature φ/L_e with the geodesic edges, exactly, whatever φ: its bending energy
 // is ½ D b L_e (φ/L_e)², as in the exact cylinder; the linear interpolation gives the chord's
 // (2 sin(φ/2)/L_e) and misses it by O(φ²). Membrane and shear are zero when the nodes lie on the circle of radius
 // L_e/(2 sin(φ/2)) (chord = L_e).
 TEST(ReissnerMindlinShell, GeodesicEdgesBendAnElementIntoAnArcExactly) {
-  const double Le = 0.75, b = 1.0, t = 0.1;
-  const ShellSection sec = ShellSection::isotropic(1.2e6, 0.0, 1.0, t);
-  const std::vector<Eigen::Vector3d> X = {{0, 0, 0}, {Le, 0, 0}, {Le, b, 0}, {0, b, 0}};
-  std::vector<Pose<double>> ref;
-  for (const auto& x : X) ref.push_back({x, Eigen::Matrix3d::Identity()});
-  const std::vector<Eigen::Vector3d> dirs(4, Eigen::Vector3d::UnitZ());
+  const FlatStrip strip;
+  const double Le = FlatStrip::Le, b = FlatStrip::b;
   for (double phi : {0.1, 2 * kPi / 16, 0.8}) {
-    const double rho = Le / (2 * std::sin(phi / 2));
-    std::vector<Pose<double>> p = ref;
-    for (int I : {1, 2}) {  // the far end turned by φ about −y, on the circle through the near end
-      const Eigen::Matrix3d Ry = exp_so3<double>(Eigen::Vector3d(0, -phi, 0));
-      p[static_cast<size_t>(I)].x = Eigen::Vector3d(rho * std::sin(phi), X[static_cast<size_t>(I)].y(), rho * (1 - std::cos(phi)));
-      p[static_cast<size_t>(I)].R = Ry;
-    }
+    const std::vector<Pose<double>> p = strip.on_circle(phi, Le / (2 * std::sin(phi / 2)));  // chord L_e
     for (auto interp : {DirectorInterpolation::geodesic, DirectorInterpolation::linear}) {
-      ShellOptions opt;
-      opt.director_interpolation = interp;
-      opt.drilling_factor = 1e-12;  // not seen here: no in-plane rotation
-      const ReissnerMindlinShell shell("s", {0, 1, 2, 3}, sec, ref, dirs, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero(), opt);
-      const double W = shell.elastic_energy(stored(p));
+      const double W = strip.element(interp, MembraneEdges::chord).elastic_energy(stored(p));
       const double kappa = interp == DirectorInterpolation::geodesic ? phi / Le : 2 * std::sin(phi / 2) / Le;
-      const double exact = 0.5 * sec.D(0, 0) * b * Le * kappa * kappa;
+      const double exact = 0.5 * strip.sec.D(0, 0) * b * Le * kappa * kappa;
       std::printf("[ arc      ] φ = %.3f, %s: W / (½ D b L_e κ²) − 1 = %.1e\n", phi,
                   interp == DirectorInterpolation::geodesic ? "geodesic, κ = φ/L_e" : "linear, κ = 2 sin(φ/2)/L_e", W / exact - 1);
       EXPECT_NEAR(W / exact, 1.0, 1e-9);
@@ -339,27 +354,14 @@ TEST(ReissnerMindlinShell, GeodesicEdgesBendAnElementIntoAnArcExactly) {
 // sees the chord's shortening as a membrane strain ε = ½((chord/L_e)² − 1) ≈ −φ²/24 (−2.6 % at
 // φ = 0.8) that resists inextensible bending (docs/theory/shell.md, "Arc membrane edges").
 TEST(ReissnerMindlinShell, ArcMembraneEdgesRollAFlatElementWithoutStretching) {
-  const double Le = 0.75, b = 1.0, t = 0.1;
-  const ShellSection sec = ShellSection::isotropic(1.2e6, 0.0, 1.0, t);
-  const std::vector<Eigen::Vector3d> X = {{0, 0, 0}, {Le, 0, 0}, {Le, b, 0}, {0, b, 0}};
-  std::vector<Pose<double>> ref;
-  for (const auto& x : X) ref.push_back({x, Eigen::Matrix3d::Identity()});
-  const std::vector<Eigen::Vector3d> dirs(4, Eigen::Vector3d::UnitZ());
+  const FlatStrip strip;
+  const double Le = FlatStrip::Le, b = FlatStrip::b;
+  const ShellSection& sec = strip.sec;
   for (double phi : {0.1, 2 * kPi / 16, 0.8}) {
-    const double rho = Le / phi;
-    std::vector<Pose<double>> p = ref;
-    for (int I : {1, 2}) {
-      p[static_cast<size_t>(I)].x = Eigen::Vector3d(rho * std::sin(phi), X[static_cast<size_t>(I)].y(), rho * (1 - std::cos(phi)));
-      p[static_cast<size_t>(I)].R = exp_so3<double>(Eigen::Vector3d(0, -phi, 0));
-    }
+    const std::vector<Pose<double>> p = strip.on_circle(phi, Le / phi);  // arc length L_e
     const double bending = 0.5 * sec.D(0, 0) * b * Le * (phi / Le) * (phi / Le);
     for (auto edges : {MembraneEdges::arc, MembraneEdges::chord}) {
-      ShellOptions opt;
-      opt.director_interpolation = DirectorInterpolation::geodesic;
-      opt.membrane_edges = edges;
-      opt.drilling_factor = 1e-12;  // not seen here: no in-plane rotation
-      const ReissnerMindlinShell shell("s", {0, 1, 2, 3}, sec, ref, dirs, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero(), opt);
-      const double W = shell.elastic_energy(stored(p));
+      const double W = strip.element(DirectorInterpolation::geodesic, edges).elastic_energy(stored(p));
       const double c = std::sin(phi / 2) / (phi / 2), eps = 0.5 * (c * c - 1);
       std::printf("[ arc edge ] φ = %.3f, %s: W / (½ D b L_e (φ/L_e)²) − 1 = %.1e (chord strain %.2e)\n", phi,
                   edges == MembraneEdges::arc ? "arc" : "chord", W / bending - 1, eps);

@@ -78,7 +78,8 @@ struct ShellSection {
 ///            independent, identical in the linear range.
 enum class DirectorInterpolation { linear, geodesic };
 
-/// How the membrane strains tied at the edges measure an edge's stretch (docs/theory/shell.md).
+/// How the element measures its edges: the stretches its membrane strains are tied to, and the
+/// tangents of its bending and shear strains (docs/theory/shell.md, "Arc membrane edges").
 ///  chord: the distance between the nodes, |x_J − x_I|. A flat element bent by a turn φ between
 ///         its nodes' directors, without stretching its mid-surface, sees its chord shorten by
 ///         1 − sin(φ/2)/(φ/2) ≈ φ²/24: a membrane strain that resists bending (2.9 % at 48°).
@@ -94,7 +95,7 @@ struct ShellOptions {
   double drilling_inertia_factor = 1.0;   ///< drilling inertia / the node's rotary inertia
   bool eas = true;                        ///< EAS4 membrane modes (quadrilaterals)
   DirectorInterpolation director_interpolation = DirectorInterpolation::linear;  ///< bending strains
-  MembraneEdges membrane_edges = MembraneEdges::chord;                          ///< tied membrane strains
+  MembraneEdges membrane_edges = MembraneEdges::chord;                          ///< edges: membrane, tangents
 };
 
 /// The geodesic distance φ = 2 asin(c/2) between two unit vectors over their chord c = |d_J − d_I|,
