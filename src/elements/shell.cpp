@@ -141,12 +141,11 @@ Form bending_form(const Shape& s, int n, int a, int b, const Eigen::MatrixXd* ge
   Form Q = zero_form(n);
   const double f = a == b ? 0.5 : 1.0;
   // the tangent a_α as Σ_i ta(α, i) over rows i (positions, or arc rows), d,α as Σ_j td(α, j)
-  Eigen::MatrixXd ta(2, n), td(2, n);
   Eigen::MatrixXd dN(2, n);
   dN.row(0) = s.dN1.transpose();
   dN.row(1) = s.dN2.transpose();
-  ta = arc ? *arc : dN;
-  td = geodesic ? *geodesic : dN;
+  const Eigen::MatrixXd& ta = arc ? *arc : dN;
+  const Eigen::MatrixXd& td = geodesic ? *geodesic : dN;
   const int row0 = arc ? 3 * n : 0, col0 = geodesic ? 2 * n : n;
   for (int I = 0; I < n; ++I)
     for (int J = 0; J < n; ++J) {
@@ -324,12 +323,15 @@ struct EdgeArc {
   double s = 0, nn = 0, p = 0;
 };
 
+/// p = (Δ·c)²/(c·c) of an edge, from s = Δ·c and n = c·c (one expression for the row and its chain).
+double arc_parameter(double s, double n) { return s * s / n; }
+
 EdgeArc edge_arc(const Eigen::Vector3d& c, const Eigen::Vector3d& D) {
   EdgeArc a;
   a.c = c;
   a.s = D.dot(c);
   a.nn = c.squaredNorm();
-  a.p = a.s * a.s / a.nn;
+  a.p = arc_parameter(a.s, a.nn);
   a.h = arc_over_chord(std::min(a.p, 4.0));
   // ∇p = (2s/n) ∇s − (s²/n²) ∇n, ∇s = (Δ, c), ∇n = (2c, 0).
   a.gp_c = (2 * a.s / a.nn) * D - (2 * a.s * a.s / (a.nn * a.nn)) * c;
@@ -361,11 +363,13 @@ Eigen::Matrix<double, 6, 6> edge_arc_hessian(const EdgeArc& a, const Eigen::Vect
   return a.h.d2h * u * gp * gp.transpose() + a.h.dh * u * H2p + a.h.dh * (gp * gu.transpose() + gu * gp.transpose());
 }
 
-/// The rows Y_e (rows r0 … r0 + m − 1 of U) from its position and director rows.
+/// The rows Y_e (rows r0 … r0 + m − 1 of U) from its position and director rows: the arc vectors
+/// only (edge_arc adds their derivatives where the tangent needs them).
 void edge_arc_rows(int n, int m, int r0, Eigen::MatrixXd& U) {
   for (int e = 0; e < m; ++e) {
     const int I = edge_node(n, e, 0), J = edge_node(n, e, 1);
-    U.row(r0 + e) = edge_arc((U.row(J) - U.row(I)).transpose(), (U.row(n + J) - U.row(n + I)).transpose()).Y.transpose();
+    const Eigen::RowVector3d c = U.row(J) - U.row(I), D = U.row(n + J) - U.row(n + I);
+    U.row(r0 + e) = arc_over_chord(std::min(arc_parameter(D.dot(c), c.squaredNorm()), 4.0)).h * c;
   }
 }
 
