@@ -291,8 +291,8 @@ PetscErrorCode SaddlePointSystem::add_mapped(const std::vector<PetscInt>& pos, c
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const AssemblyCoefficients& c,
-                                           ConstraintRows rows, bool matrix) {
+template <class Add>
+PetscErrorCode SaddlePointSystem::assemble_guarded(bool matrix, const Add& add) {
   PetscFunctionBeginUser;
   PetscCall(VecSet(r_, 0.0));
   if (matrix) PetscCall(MatZeroEntries(S_));
@@ -302,12 +302,11 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   std::string local_error;
   FailureKind kind = FailureKind::Solver;  // a ConfigurationError or MemoryError keeps its type on every rank
   try {
-    // Tests of error handling: one rank adds nothing, which leaves rows of the matrix zero.
     if (matrix) {
       PetscCall(MatSeqAIJGetArray(diag_, &d_a_));
       if (offdiag_) PetscCall(MatSeqAIJGetArray(offdiag_, &o_a_));
     }
-    if (!(matrix && fault_injected("singular"))) PetscCall(add_local_contributions(s, c, rows, matrix));
+    PetscCall(add());
   } catch (const ConfigurationError& e) {
     local_error = e.what();
     kind = FailureKind::Configuration;
@@ -330,6 +329,59 @@ PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const Assem
   }
   quiet.check(VecAssemblyBegin(r_), "assembling the residual (rows from other ranks)");
   quiet.check(VecAssemblyEnd(r_), "assembling the residual (rows from other ranks)");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::assemble(const MechanicalState& s, const AssemblyCoefficients& c,
+                                           ConstraintRows rows, bool matrix) {
+  PetscFunctionBeginUser;
+  PetscCall(assemble_guarded(matrix, [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    // Tests of error handling: one rank adds nothing, which leaves rows of the matrix zero.
+    if (!(matrix && fault_injected("singular"))) PetscCall(add_local_contributions(s, c, rows, matrix));
+    PetscFunctionReturn(0);
+  }));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::assemble_mass_action(const MechanicalState& s, const AssemblyCoefficients& c,
+                                                       const Eigen::VectorXd& w) {
+  PetscFunctionBeginUser;
+  PetscCall(assemble_guarded(false, [&]() { return add_mass_action(s, c, w); }));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SaddlePointSystem::add_mass_action(const MechanicalState& s, const AssemblyCoefficients& c,
+                                                  const Eigen::VectorXd& w) {
+  PetscFunctionBeginUser;
+  const double scale = c.row_scale * c.mass;
+  LocalState& ls = ls_;
+  LocalResidual& lr = lr_;
+  for (size_t e = 0; e < model_.elements().size(); ++e) {
+    const auto& idx = elem_dofs_[e];
+    const int n = static_cast<int>(idx.size());
+    const Element& el = *model_.elements()[e];
+    gather_to(s.q, elem_confs_[e], ls.q);
+    gather_to(s.v, idx, ls.v);
+    gather_to(s.qdd, idx, ls.qdd);
+    gather_to(w, idx, w_e_);
+    ls.t = s.t;
+    ls.load_factor = c.load_factor;
+    if (el.mass_action(ls, w_e_, mw_e_)) {
+      mw_e_ *= scale;
+    } else {
+      // r(q̈ + c_m w) − r(q̈): the filter's own difference (both residuals as in a step, so that the
+      // shift c_m w is of the size of q̈ and the difference keeps its digits).
+      lr.reset(n, false);
+      el.evaluate(ls, lr, false);
+      r_shift_ = lr.r;
+      ls.qdd += c.mass * w_e_;
+      lr.reset(n, false);
+      el.evaluate(ls, lr, false);
+      mw_e_ = c.row_scale * (lr.r - r_shift_);
+    }
+    PetscCall(VecSetValues(r_, n, elem_rows_[e].data(), mw_e_.data(), ADD_VALUES));
+  }
   PetscFunctionReturn(0);
 }
 

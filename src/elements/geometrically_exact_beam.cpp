@@ -131,7 +131,7 @@ Eigen::Matrix<S, 12, 1> GeometricallyExactBeam::section_residual_of(const Pose<S
     Vec6<S> w;
     w.template head<3>() = RsB.transpose() * dxdt + Rrel.transpose() * p.cross(phiA);
     w.template tail<3>() = phiB - Rrel.transpose() * phiA;
-    const Vec6<S> rate = tangent_se3_inverse<S>(d) * w;
+    const Vec6<S> rate = tangent_se3_inverse_times<S>(d, w);
     const double eta = eta_;
     for (int k = 0; k < 6; ++k) f[k] += S(eta * c[k] / L0_) * rate[k];
   }
@@ -272,6 +272,24 @@ void GeometricallyExactBeam::add_inertia(const LocalState& s, LocalResidual& out
       out.M.block<3, 3>(6 * i + 3, 6 * j + 3) += L0_ * kMass[i][j] * offset_[i] * J * offset_[j].transpose();
       out.C.block<3, 3>(6 * i + 3, 6 * j + 3) += offset_[i] * cbar[i][j] * offset_[j].transpose();
     }
+}
+
+bool GeometricallyExactBeam::mass_action(const LocalState& /*s*/, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const {
+  // The q̈-linear part of add_inertia with q̈ = w: ∫ N_i N_j ds (ρA w_j, O_i J̄ O_jᵀ w_j).
+  const double mA = section_.rhoA() * L0_;
+  const Eigen::Matrix3d J = section_.rotary_inertia();
+  Mw.setZero(12);
+  std::array<Eigen::Vector3d, 2> Jw;
+  for (int j = 0; j < 2; ++j) Jw[j] = J * (offset_[j].transpose() * w.segment<3>(6 * j + 3));
+  for (int i = 0; i < 2; ++i) {
+    Eigen::Vector3d rbar = Eigen::Vector3d::Zero();
+    for (int j = 0; j < 2; ++j) {
+      Mw.segment<3>(6 * i) += mA * kMass[i][j] * w.segment<3>(6 * j);
+      rbar += L0_ * kMass[i][j] * Jw[j];
+    }
+    Mw.segment<3>(6 * i + 3) = offset_[i] * rbar;
+  }
+  return true;
 }
 
 std::vector<CellField> GeometricallyExactBeam::cell_fields() const {

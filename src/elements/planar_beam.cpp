@@ -206,6 +206,19 @@ void PlanarBeam::evaluate(const LocalState& st, LocalResidual& out, bool tangent
   out.M(5, 5) += 2.0 * mr;
 }
 
+bool PlanarBeam::mass_action(const LocalState& /*s*/, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const {
+  // The consistent mass of evaluate() (linear interpolation).
+  const double mt = rhoA_ * L0_ / 6.0, mr = rhoI_ * L0_ / 6.0;
+  Mw.resize(6);
+  for (int k = 0; k < 2; ++k) {
+    Mw[k] = mt * (2.0 * w[k] + w[3 + k]);
+    Mw[3 + k] = mt * (w[k] + 2.0 * w[3 + k]);
+  }
+  Mw[2] = mr * (2.0 * w[2] + w[5]);
+  Mw[5] = mr * (w[2] + 2.0 * w[5]);
+  return true;
+}
+
 std::vector<CellField> PlanarBeam::cell_fields() const {
   return {{"N"}, {"V"}, {"M"}, {"axial_strain"}, {"shear_strain"}, {"curvature"}};
 }

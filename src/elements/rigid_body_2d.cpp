@@ -18,6 +18,12 @@ void RigidBody2D::evaluate(const LocalState& s, LocalResidual& out, bool tangent
   }
 }
 
+bool RigidBody2D::mass_action(const LocalState& /*s*/, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const {
+  Mw.resize(3);
+  Mw << m_ * w[0], m_ * w[1], j_ * w[2];
+  return true;
+}
+
 PointMass::PointMass(std::string name, int node, const Node& n, double mass, Eigen::Vector2d gravity)
     : Element(std::move(name), {node}) {
   const PlanarMarker marker = PlanarMarker::on_node(n, Eigen::Vector2d::Zero(), 0);
@@ -30,6 +36,11 @@ PointMass::PointMass(std::string name, int node, const Node& n, double mass, Eig
 void PointMass::evaluate(const LocalState& s, LocalResidual& out, bool tangent) const {
   out.r += mass_matrix_ * s.qdd - s.load_factor * weight_;
   if (tangent) out.M += mass_matrix_;
+}
+
+bool PointMass::mass_action(const LocalState& /*s*/, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const {
+  Mw.noalias() = mass_matrix_ * w;
+  return true;
 }
 
 }  // namespace alphaflex

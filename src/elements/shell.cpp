@@ -959,6 +959,31 @@ void ReissnerMindlinShell::evaluate(const LocalState& s, LocalResidual& out, boo
   }
 }
 
+bool ReissnerMindlinShell::mass_action(const LocalState& s, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const {
+  // The M of evaluate(): ρt m_IJ on the translations, Ir m_IJ Λ_Iᵀ Λ_J (Λ_J = −R_J D̄_J^) and the
+  // lumped drilling inertia J_d on the rotations.
+  const double rhot = section_.mass, Ir = section_.rotary;
+  Mw.setZero(6 * n_);
+  std::array<Eigen::Vector3d, kMaxNodes> dd;  // Λ_J w_θJ = R_J (w_θJ × D̄_J)
+  std::array<Eigen::Matrix3d, kMaxNodes> R;
+  for (int J = 0; J < n_; ++J) {
+    R[static_cast<size_t>(J)] = pose_of(s.q.data() + 7 * J).R;
+    dd[static_cast<size_t>(J)] = R[static_cast<size_t>(J)] * w.segment<3>(6 * J + 3).cross(dbar_[static_cast<size_t>(J)]);
+  }
+  for (int I = 0; I < n_; ++I) {
+    Eigen::Vector3d z = Eigen::Vector3d::Zero();
+    for (int J = 0; J < n_; ++J) {
+      Mw.segment<3>(6 * I) += rhot * mass_(I, J) * w.segment<3>(6 * J);
+      z += Ir * mass_(I, J) * dd[static_cast<size_t>(J)];
+    }
+    const Eigen::Vector3d& Db = dbar_[static_cast<size_t>(I)];
+    const double jd = options_.drilling_inertia_factor * Ir * mass_.row(I).sum();
+    // Λ_Iᵀ z = −D̄_I^ᵀ R_Iᵀ z = D̄_I × (R_Iᵀ z).
+    Mw.segment<3>(6 * I + 3) = Db.cross(R[static_cast<size_t>(I)].transpose() * z) + jd * Db * Db.dot(w.segment<3>(6 * I + 3));
+  }
+  return true;
+}
+
 // ------------------------------------------------------------------ output
 
 OutputCell ReissnerMindlinShell::output_cell() const {

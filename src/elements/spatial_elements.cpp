@@ -48,6 +48,20 @@ void RigidBody3D::evaluate(const LocalState& s, LocalResidual& out, bool tangent
   }
 }
 
+bool RigidBody3D::mass_action(const LocalState& s, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const {
+  // The M of evaluate(): [m I, −m R ĉ; m ĉ Rᵀ, J_P] about the node P (J_P = J about the centre, c = 0).
+  Mw.resize(6);
+  const Eigen::Vector3d wx = w.segment<3>(0), wt = w.segment<3>(3);
+  if (c_.isZero(0.0)) {
+    Mw << m_ * wx, j_ * wt;
+    return true;
+  }
+  const Eigen::Matrix3d R = pose_of(s.q.data()).R;
+  const Eigen::Matrix3d Jp = j_ + m_ * (c_.squaredNorm() * Eigen::Matrix3d::Identity() - c_ * c_.transpose());
+  Mw << m_ * (wx - R * c_.cross(wt)), Jp * wt + m_ * c_.cross(R.transpose() * wx);
+  return true;
+}
+
 SpatialLoad::SpatialLoad(std::string name, int node, const Eigen::Vector3d& point, std::array<TimeFunctionPtr, 3> force,
                          std::array<TimeFunctionPtr, 3> moment, bool follower)
     : Element(std::move(name), {node}), point_(point), force_(std::move(force)), moment_(std::move(moment)),

@@ -86,6 +86,17 @@ ModelVector LinearizedSystem::solve_with_last_factorization(const MechanicalStat
   return solve_factored();
 }
 
+ModelVector LinearizedSystem::solve_mass_action_with_last_factorization(const MechanicalState& s,
+                                                                       const AssemblyCoefficients& c,
+                                                                       const Eigen::VectorXd& w) {
+  const double t0 = MPI_Wtime();
+  PetscLogEventBegin(ev_assembly, 0, 0, 0, 0);
+  check_petsc(sys_.assemble_mass_action(s, c, w), "assembly");
+  PetscLogEventEnd(ev_assembly, 0, 0, 0, 0);
+  times_.assembly += MPI_Wtime() - t0;
+  return solve_factored();
+}
+
 std::string LinearizedSystem::describe_largest(const ModelVector& r) const {
   // Collective: the rank holding the largest entry names it (its node or joint), every rank gets
   // the text. Only owned coordinates compete (a ghost's entry is its owner's).

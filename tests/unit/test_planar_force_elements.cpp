@@ -82,6 +82,10 @@ TEST(PlanarCoordinateForce, TangentsOfBushingsJointSpringsAndMotorsMatchCentralD
       const double err = tangent_error(*e, s);
       worst = std::max(worst, err);
       EXPECT_LE(err, 1e-7) << what;
+      // No inertia: M w = 0 from mass_action (the filtered error estimate's product), as in the tangent.
+      Eigen::VectorXd Mw;
+      EXPECT_TRUE(e->mass_action(s, s.v, Mw)) << what;
+      EXPECT_EQ(Mw, (testing::element_tangents(*e, s).M * s.v).eval()) << what;
     }
   }
   std::printf("[ tangents ] planar bushing, joint spring-dampers and motors: worst relative difference %.1e\n", worst);

@@ -68,8 +68,8 @@ std::vector<Vector6d> twists(std::mt19937& rng) {
 
 double rel(const Eigen::MatrixXd& a, const Eigen::MatrixXd& ref) { return (a - ref).norm() / ref.norm(); }
 
-// T_SE(3) in closed form equals the series of ad, its inverse is the inverse, and the vector form
-// T_SE(3)⁻ᵀ f equals the matrix product.
+// T_SE(3) in closed form equals the series of ad, its inverse is the inverse, and the vector forms
+// T_SE(3)⁻ᵀ f and T_SE(3)⁻¹ f equal the matrix products.
 TEST(SE3, TangentAndItsInverseEqualTheSeriesOfAd) {
   std::mt19937 rng(3);
   double worst_t = 0.0, worst_inv = 0.0, worst_vec = 0.0;
@@ -78,7 +78,9 @@ TEST(SE3, TangentAndItsInverseEqualTheSeriesOfAd) {
     const double et = rel(T, tangent_series(xi));
     const double ei = (Ti * T - Matrix6d::Identity()).norm();
     const Vector6d f = Vector6d::Random();
-    const double ev = (tangent_se3_inverse_transpose_times<double>(xi, f) - Ti.transpose() * f).norm() / f.norm();
+    const double ev = std::max((tangent_se3_inverse_transpose_times<double>(xi, f) - Ti.transpose() * f).norm(),
+                               (tangent_se3_inverse_times<double>(xi, f) - Ti * f).norm()) /
+                      f.norm();
     EXPECT_LT(et, 1e-14) << xi.transpose();
     EXPECT_LT(ei, 1e-13) << xi.transpose();
     EXPECT_LT(ev, 1e-13) << xi.transpose();
@@ -88,7 +90,7 @@ TEST(SE3, TangentAndItsInverseEqualTheSeriesOfAd) {
     // The SO(3) blocks are those of core/rotation.hpp.
     EXPECT_LT((Ti.topLeftCorner<3, 3>() - tangent_so3_inverse<double>(Vector3d(xi.tail<3>()))).norm(), 1e-15);
   }
-  std::printf("SE(3) tangent vs series of ad: %.1e; T^-1 T - I: %.1e; T^-T f vector form vs matrix: %.1e\n", worst_t,
+  std::printf("SE(3) tangent vs series of ad: %.1e; T^-1 T - I: %.1e; T^-T f, T^-1 f vector forms vs matrix: %.1e\n", worst_t,
               worst_inv, worst_vec);
 }
 

@@ -65,6 +65,13 @@ class SaddlePointSystem {
   /// joint on any rank becomes a SolverError with that message on every rank (no rank hangs).
   PetscErrorCode assemble(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows, bool matrix);
 
+  /// Assembles into the residual vector r = s_r c_m M(q) w in the coordinate rows (s_r = c.row_scale,
+  /// c_m = c.mass) and 0 in the multiplier rows: the difference of the residuals at q̈ + c_m w and q̈,
+  /// computed without the forces that cancel in it (Element::mass_action; an element without it is
+  /// evaluated at both). `w` in the local order of s.qdd (owned and ghost coordinates). The
+  /// filtered error estimate's right-hand side (driver/error_filter.hpp). Collective.
+  PetscErrorCode assemble_mass_action(const MechanicalState& s, const AssemblyCoefficients& c, const Eigen::VectorXd& w);
+
   Mat matrix() const { return S_; }
   Vec residual() const { return r_; }
   /// A vector with the layout of the residual (for solutions).
@@ -95,6 +102,11 @@ class SaddlePointSystem {
                             const Value& value);
   PetscErrorCode add_local_contributions(const MechanicalState& s, const AssemblyCoefficients& c, ConstraintRows rows,
                                          bool matrix);
+  PetscErrorCode add_mass_action(const MechanicalState& s, const AssemblyCoefficients& c, const Eigen::VectorXd& w);
+  /// Runs `add` (which adds this rank's part), agrees on failure over all ranks (an exception on one
+  /// rank is thrown on every rank), then assembles r (and S if `matrix`).
+  template <class Add>
+  PetscErrorCode assemble_guarded(bool matrix, const Add& add);
   /// What a failure of one rank becomes on every rank: kind 0 SolverError, 1 ConfigurationError,
   /// 2 MemoryError.
   enum class FailureKind { Solver = 0, Configuration = 1, Memory = 2 };
@@ -124,7 +136,7 @@ class SaddlePointSystem {
   // Per-assembly work arrays (no allocation per element once sized).
   LocalState ls_;
   LocalResidual lr_;
-  Eigen::VectorXd phi_, extra_, q_con_, v_con_, lam_con_, rc_, rq_;
+  Eigen::VectorXd phi_, extra_, q_con_, v_con_, lam_con_, rc_, rq_, w_e_, mw_e_, r_shift_;
   Eigen::MatrixXd phi_q_, kc_;
 };
 

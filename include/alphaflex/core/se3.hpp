@@ -104,6 +104,25 @@ Vec3<S> q_left_times(const Vec3<S>& u, const Vec3<S>& phi, const S& c1, const S&
   return uv / S(2) + c1 * (upv + puv + pupv) + c2 * (uppv + ppuv - S(3) * pupv) + c3 * (ppupv + puppv);
 }
 
+/// T⁻¹(φ) v = v + ½ φ × v + d φ × (φ × v) (the transpose of tangent_inverse_transpose_times).
+template <class S>
+Vec3<S> tangent_inverse_times(const Vec3<S>& phi, const S& d, const Vec3<S>& v) {
+  const Vec3<S> a = phi.cross(v);
+  return v + a / S(2) + d * phi.cross(a);
+}
+
+/// Q_r(u, φ) v with c1, c2, c3 given (se3_tangent_coupling's matrix), by cross products: with
+/// Û = (−u)^ and P̂ = (−φ)^, Q_r = Û/2 + c1 (ÛP̂ + P̂Û + P̂ÛP̂) + c2 (ÛP̂² + P̂²Û − 3 P̂ÛP̂) + c3 (P̂²ÛP̂ + P̂ÛP̂²).
+template <class S>
+Vec3<S> q_right_times(const Vec3<S>& u, const Vec3<S>& phi, const S& c1, const S& c2, const S& c3, const Vec3<S>& v) {
+  // (−a)^ x = x × a.
+  const Vec3<S> Pv = v.cross(phi), Uv = v.cross(u);
+  const Vec3<S> UPv = Pv.cross(u), PUv = Uv.cross(phi), PPv = Pv.cross(phi);
+  const Vec3<S> PUPv = UPv.cross(phi), UPPv = PPv.cross(u), PPUv = PUv.cross(phi);
+  const Vec3<S> PPUPv = PUPv.cross(phi), PUPPv = UPPv.cross(phi);
+  return Uv / S(2) + c1 * (UPv + PUv + PUPv) + c2 * (UPPv + PPUv - S(3) * PUPv) + c3 * (PPUPv + PUPPv);
+}
+
 }  // namespace se3_detail
 
 /// Q_r(u, φ), the upper right block of T_SE(3)(u, φ).
@@ -148,6 +167,22 @@ Vec6<S> tangent_se3_inverse_transpose_times(const Vec6<S>& xi, const Vec6<S>& f)
   const Vec3<S> w = f.template tail<3>() - se3_detail::q_left_times<S>(u, phi, c1, c2, c3, v);
   Vec6<S> g;
   g << v, se3_detail::tangent_inverse_transpose_times<S>(phi, d, w);
+  return g;
+}
+
+/// T_SE(3)(ξ)⁻¹ w, by cross products (no 3×3 products): with z = T⁻¹(φ) w_φ,
+/// (T_SE(3)⁻¹ w)_u = T⁻¹(φ) (w_u − Q_r(u, φ) z) and (T_SE(3)⁻¹ w)_φ = z.
+template <class S>
+Vec6<S> tangent_se3_inverse_times(const Vec6<S>& xi, const Vec6<S>& w) {
+  const Vec3<S> u = xi.template head<3>(), phi = xi.template tail<3>();
+  const S th2 = phi.squaredNorm();
+  S c1, c2, c3;
+  se3_detail::q_coefficients<S>(th2, c1, c2, c3);
+  const S d = se3_detail::inverse_coefficient<S>(th2);
+  const Vec3<S> z = se3_detail::tangent_inverse_times<S>(phi, d, Vec3<S>(w.template tail<3>()));
+  const Vec3<S> y = w.template head<3>() - se3_detail::q_right_times<S>(u, phi, c1, c2, c3, z);
+  Vec6<S> g;
+  g << se3_detail::tangent_inverse_times<S>(phi, d, y), z;
   return g;
 }
 

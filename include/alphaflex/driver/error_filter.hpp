@@ -13,9 +13,10 @@
 // (hω ≫ 1, which can make no error larger than its amplitude) is left out of the estimate.
 //
 // The residual is affine in q̈ with the (row-scaled) mass matrix as coefficient: the residuals at
-// q̈ and q̈ + β'e, each solved with the factorization of S_t the step left in the linear solver,
-// differ by exactly W e — what Newton left in the residual cancels. Two residual assemblies and two
-// back-substitutions per step, no factorization; one distributed solve, so all ranks agree.
+// q̈ and q̈ + β'e differ by exactly s_r β'M e, which each element gives as M e without its elastic,
+// damping and applied forces (Element::mass_action; SaddlePointSystem::assemble_mass_action). One
+// such assembly and one back-substitution with the factorization of S_t the step left in the
+// linear solver per application, no factorization; one distributed solve, so all ranks agree.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>

@@ -14,6 +14,9 @@ class PointForce2D final : public Element {
   const char* type() const override { return "force"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<PointForce2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
 
  private:
   PlanarMarker point_;
@@ -27,6 +30,9 @@ class Torque2D final : public Element {
   const char* type() const override { return "torque"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<Torque2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
 
  private:
   TimeFunctionPtr torque_;

@@ -89,6 +89,9 @@ class GeometricallyExactBeam final : public Element {
   const char* type() const override { return "beam"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<GeometricallyExactBeam>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  /// M w: the consistent translational mass and the sections' rotary inertia (add_inertia), which do
+  /// not depend on q.
+  bool mass_action(const LocalState& s, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override;
 
   /// Drawn as a line segment between its nodes in the results' "beams" grid.
   const char* structure() const override { return "beam"; }

@@ -18,6 +18,9 @@ class JointCoordinateForce final : public Element {
   const char* type() const override { return role_ == Role::motor ? "joint_motor" : "joint_spring_damper"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<JointCoordinateForce>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
   std::vector<CellField> cell_fields() const override;
   /// coordinate ψ (rad or m), speed ψ̇, and the torque or force on the coordinate (N·m or N,
   /// positive in the sense of ψ: −r).

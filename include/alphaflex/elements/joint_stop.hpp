@@ -26,6 +26,9 @@ class JointStop final : public Element {
   const char* type() const override { return "joint_stop"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<JointStop>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
   std::vector<CellField> cell_fields() const override;
   /// coordinate ψ, speed ψ̇, penetration δ (≥ 0, m or rad) and the stop's torque or force on the
   /// coordinate (positive in the sense of ψ: −r).

@@ -44,6 +44,9 @@ class PlanarCoordinateForce final : public Element {
   const char* type() const override;
   std::unique_ptr<Element> clone() const override { return std::make_unique<PlanarCoordinateForce>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
   double elastic_energy(const Eigen::VectorXd& q) const override;
   std::vector<CellField> cell_fields() const override;
   /// bushing: deflection[0..2], force[0..2] (K ε + C ε̇); joint forces: coordinate (ε − ε0), speed,

@@ -12,6 +12,7 @@ class RigidBody2D final : public Element {
   const char* type() const override { return "rigid_body"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<RigidBody2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState& s, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override;
 
  private:
   double m_, j_;
@@ -26,6 +27,7 @@ class PointMass final : public Element {
   const char* type() const override { return "point_mass"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<PointMass>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState& s, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override;
 
  private:
   Eigen::MatrixXd mass_matrix_;

@@ -125,6 +125,7 @@ class ReissnerMindlinShell final : public Element {
   const char* type() const override { return nodes().size() == 4 ? "shell_quad4" : "shell_tri3"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<ReissnerMindlinShell>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState& s, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override;
 
   /// Drawn as a quadrilateral or a triangle (its nodes, counter-clockwise about the normal) in the
   /// results' "shells" grid.
@@ -196,6 +197,9 @@ class ShellPressure final : public Element {
   const char* type() const override { return "pressure"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<ShellPressure>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
 
  private:
   int n_ = 0;

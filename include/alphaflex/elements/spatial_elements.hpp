@@ -30,6 +30,7 @@ class RigidBody3D final : public Element {
   const char* type() const override { return "rigid_body"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<RigidBody3D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState& s, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override;
   /// No elastic force (zero): a reduction's internal-force differences skip the inertia terms.
   bool internal_force(const Eigen::VectorXd& q, Eigen::VectorXd& r) const override;
   double mass() const { return m_; }
@@ -57,6 +58,9 @@ class SpatialLoad final : public Element {
   const char* type() const override { return "load"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<SpatialLoad>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
 
   /// The residual kernel (model/spatial_kernel.hpp) at load factor `factor`.
   template <class S>

@@ -47,6 +47,9 @@ class SpatialSpringDamper final : public Element {
   const char* type() const override { return "spring_damper"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<SpatialSpringDamper>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
   std::vector<CellField> cell_fields() const override;
   /// length (m), elongation L − L0 (m), rate L̇ (m/s), tension N (N).
   void output(const LocalState& s, Eigen::VectorXd& values) const override;
@@ -73,6 +76,9 @@ class Bushing final : public Element {
   const char* type() const override { return "bushing"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<Bushing>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
   std::vector<CellField> cell_fields() const override;
   /// deflection ε (u in m, γ in rad) and generalized force f = K ε + C ε̇ (N, N·m).
   void output(const LocalState& s, Eigen::VectorXd& values) const override;

@@ -20,6 +20,9 @@ class SpringDamper2D final : public Element {
   const char* type() const override { return "spring_damper"; }
   std::unique_ptr<Element> clone() const override { return std::make_unique<SpringDamper2D>(*this); }
   void evaluate(const LocalState& s, LocalResidual& out, bool tangent) const override;
+  bool mass_action(const LocalState&, const Eigen::VectorXd& w, Eigen::VectorXd& Mw) const override {
+    return no_mass_action(w, Mw);
+  }
   /// ½ k (L − L0)².
   double elastic_energy(const Eigen::VectorXd& q) const override {
     const double e = length(q) - l0_;

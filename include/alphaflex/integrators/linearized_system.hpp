@@ -110,6 +110,10 @@ class LinearizedSystem {
   /// with the factors of an earlier S (modified Newton).
   ModelVector solve_with_last_factorization(const MechanicalState& s, const AssemblyCoefficients& c,
                                             ConstraintRows rows, ModelVector* residual);
+  /// x = S⁻¹ (s_r c_m M(q) w; 0) with the factors of an earlier S (SaddlePointSystem::assemble_mass_action):
+  /// one application of the filtered error estimate's W (driver/error_filter.hpp).
+  ModelVector solve_mass_action_with_last_factorization(const MechanicalState& s, const AssemblyCoefficients& c,
+                                                        const Eigen::VectorXd& w);
   /// "largest equilibrium residual … at node '…' (…); largest constraint violation … in joint '…'".
   std::string describe_largest(const ModelVector& r) const;
 

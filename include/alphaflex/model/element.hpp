@@ -86,6 +86,14 @@ class Element {
   /// What a reduction differentiates (modal/superelement.hpp, nonlinear_stiffness). Returns false,
   /// r untouched, if the element does not offer it: the caller evaluates the whole element at rest.
   virtual bool internal_force(const Eigen::VectorXd& /*q*/, Eigen::VectorXd& /*r*/) const { return false; }
+  /// M(q) w, the residual's derivative with respect to q̈ applied to w (r is affine in q̈), into Mw
+  /// (resized): what the filtered error estimate of the adaptive steps multiplies by at every
+  /// application (docs/theory/adaptive_steps.md §3b), so that it costs no elastic forces. Returns
+  /// false, Mw untouched, if the element does not offer it: the caller then takes the difference of
+  /// two residuals at q̈ + w and q̈, which is the same vector up to round-off.
+  virtual bool mass_action(const LocalState& /*s*/, const Eigen::VectorXd& /*w*/, Eigen::VectorXd& /*Mw*/) const {
+    return false;
+  }
   /// Whether a model with this element iterates with modified Newton under the default policy
   /// whatever its size (NewtonOptions::uses_modified): an element whose tangent costs several
   /// residuals and changes little from one step to the next, so that the iterations modified
@@ -106,6 +114,11 @@ class Element {
 
  protected:
   Element(const Element&) = default;
+  /// mass_action of an element without inertia (its residual does not depend on q̈): M w = 0.
+  static bool no_mass_action(const Eigen::VectorXd& w, Eigen::VectorXd& Mw) {
+    Mw.setZero(w.size());
+    return true;
+  }
   virtual std::unique_ptr<Element> clone() const = 0;
 
  private:
