@@ -122,12 +122,7 @@ TEST(DistributedAssembly, ResidualAndMatrixEqualTheSerialOnesAndThePreallocation
     const MechanicalState s = generic_state(g, 11);
     const AlphaParameters p = AlphaParameters::from_rho_inf(0.7);
     const double h = 0.02;
-    AssemblyCoefficients co;
-    co.mass = (1 - p.alpha_m) / (h * h * p.beta * (1 - p.alpha_f));
-    co.damping = p.gamma / (h * p.beta);
-    co.stiffness = 1.0;
-    co.row_scale = p.beta * h * h;
-    co.multiplier_scale = 1.0 / (p.beta * h * h);
+    const AssemblyCoefficients co = scaled_step_coefficients(p, h);
     // A Lie-group increment too (T(x) on the position columns), the same in both numberings.
     const MechanicalState xs = generic_state(g, 5);
     const Eigen::VectorXd x = 0.1 * xs.v;

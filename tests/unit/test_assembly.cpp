@@ -51,12 +51,7 @@ TEST_P(AssembledTangent, IterationMatrixIsDerivativeOfResidualAlongNewtonUpdate)
   const AlphaParameters p = AlphaParameters::from_rho_inf(0.7);
   // A large step, so that the stiffness terms (×βh² after scaling) weigh as much as the mass terms.
   const double h = 0.05;
-  AssemblyCoefficients c;
-  c.mass = (1 - p.alpha_m) / (h * h * p.beta * (1 - p.alpha_f));
-  c.damping = p.gamma / (h * p.beta);
-  c.stiffness = 1.0;
-  c.row_scale = p.beta * h * h;
-  c.multiplier_scale = 1.0 / (p.beta * h * h);
+  const AssemblyCoefficients c = scaled_step_coefficients(p, h);
 
   ASSERT_EQ(sys.assemble(s, c, ConstraintRows::Dynamic, true), 0);
   MatInfo info;
@@ -183,12 +178,7 @@ TEST_P(MassAction, IsTheTangentMassTimesWAndTheResidualsDifferenceAlongQdd) {
   // The coefficients of a step (h = 1e-3, ρ∞ = 0.7) and a random w.
   const AlphaParameters p = AlphaParameters::from_rho_inf(0.7);
   const double h = 1e-3;
-  AssemblyCoefficients c;
-  c.mass = (1 - p.alpha_m) / (h * h * p.beta * (1 - p.alpha_f));
-  c.damping = p.gamma / (h * p.beta);
-  c.stiffness = 1.0;
-  c.row_scale = p.beta * h * h;
-  c.multiplier_scale = 1.0 / (p.beta * h * h);
+  const AssemblyCoefficients c = scaled_step_coefficients(p, h);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Eigen::VectorXd w(s.qdd.size());
   for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = 10.0 * u(gen);

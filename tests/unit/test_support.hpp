@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "alphaflex/app/simulation.hpp"
+#include "alphaflex/assembly/saddle_point_system.hpp"
+#include "alphaflex/integrators/alpha_parameters.hpp"
 #include "alphaflex/core/error.hpp"
 #include "alphaflex/core/rotation.hpp"
 #include "alphaflex/model/element.hpp"
@@ -48,6 +50,19 @@ inline std::string input_error_of(const std::function<void()>& f) {
   }
   ADD_FAILURE() << "accepted: no error";
   return "";
+}
+
+/// The coefficients of a generalized-α step of size h with the Bottasso scaling, written out from
+/// eq. 6 (β' = (1 − α_m)/(βh²(1 − α_f)), γ' = γ/(βh), rows × βh², multipliers ÷ βh²): what tests of
+/// the assembly use, independently of GeneralizedAlpha::step_coefficients.
+inline AssemblyCoefficients scaled_step_coefficients(const AlphaParameters& p, double h) {
+  AssemblyCoefficients c;
+  c.mass = (1 - p.alpha_m) / (h * h * p.beta * (1 - p.alpha_f));
+  c.damping = p.gamma / (h * p.beta);
+  c.stiffness = 1.0;
+  c.row_scale = p.beta * h * h;
+  c.multiplier_scale = 1.0 / (p.beta * h * h);
+  return c;
 }
 
 /// An element's local state (q: configuration numbers, v and q̇̇ in the element's unknowns).
