@@ -97,14 +97,14 @@ INSTANTIATE_TEST_SUITE_P(PaperScenes, AssembledTangent, ::testing::Values("slide
 // (2) assembled, r = s_r c_m M w equals r(q̈ + c_m w) − r(q̈), the difference the filter took before,
 // to its round-off; multiplier rows zero.
 
-/// A state away from the initial one: q moved (frames' quaternions renormalised), random q̇, q̈, λ.
+/// A state away from the initial one: q moved on its group (Model::retract), random q̇, q̈, λ.
 MechanicalState generic_state(const Model& m, std::mt19937& gen) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   MechanicalState s = m.initial_state();
   s.t = 0.3;
-  for (Eigen::Index i = 0; i < s.q.size(); ++i) s.q[i] += 0.05 * u(gen);
-  for (const Node& n : m.nodes())
-    if (n.kind == NodeKind::Frame3D) s.q.segment<4>(n.first_conf + 3).normalize();
+  Eigen::VectorXd dx(m.num_dofs());
+  for (Eigen::Index i = 0; i < dx.size(); ++i) dx[i] = 0.05 * u(gen);
+  m.retract(s.q, dx);
   for (Eigen::Index i = 0; i < s.v.size(); ++i) {
     s.v[i] = u(gen);
     s.qdd[i] = 10.0 * u(gen);
