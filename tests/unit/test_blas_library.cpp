@@ -77,6 +77,37 @@ TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
   if (launcher) setenv("OMPI_COMM_WORLD_SIZE", launcher_value.c_str(), 1);
 }
 
+// An isolated singleton makes no session directory: every one of them is job 1 of job family 0,
+// and concurrent runs raced on /tmp/ompi.<host>.<uid>/jf.0/1 (a CI run failed in MPI_Init on it).
+// With the daemon (isolated off by the user) the directory stays, since orted needs it; under a
+// launcher, or over the user's own setting, nothing is touched.
+TEST(MpiSingleton, IsolatedSingletonsMakeNoSharedSessionDirectory) {
+  const std::vector<std::string> keys{"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs",
+                                      "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"};
+  std::vector<std::pair<bool, std::string>> saved;
+  for (const auto& k : keys) {
+    const char* v = std::getenv(k.c_str());
+    saved.emplace_back(v != nullptr, v ? v : "");
+  }
+  auto session_dirs = [&](std::initializer_list<std::pair<const char*, const char*>> set) {
+    for (const auto& k : keys) unsetenv(k.c_str());
+    for (const auto& [k, v] : set) setenv(k, v, 1);
+    alphaflex::avoid_singleton_daemon();
+    const char* value = std::getenv("OMPI_MCA_orte_create_session_dirs");
+    return std::string(value ? value : "(unset)");
+  };
+  EXPECT_EQ(session_dirs({}), "0") << "a singleton started by hand";
+  EXPECT_EQ(session_dirs({{"OMPI_MCA_ess_singleton_isolated", "true"}}), "0");
+  EXPECT_EQ(session_dirs({{"OMPI_MCA_ess_singleton_isolated", "0"}}), "(unset)") << "orted needs the directory";
+  EXPECT_EQ(session_dirs({{"OMPI_MCA_ess_singleton_isolated", "False"}}), "(unset)");
+  EXPECT_EQ(session_dirs({{"OMPI_COMM_WORLD_SIZE", "2"}}), "(unset)") << "mpirun's ranks keep theirs";
+  EXPECT_EQ(session_dirs({{"PMIX_RANK", "0"}}), "(unset)");
+  EXPECT_EQ(session_dirs({{"OMPI_MCA_orte_create_session_dirs", "1"}}), "1") << "the user's setting must win";
+
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (saved[i].first) setenv(keys[i].c_str(), saved[i].second.c_str(), 1); else unsetenv(keys[i].c_str());
+}
+
 // Shared memory (ob1) is asked for only when every rank is on this node and the user chose no PML
 // or MTL; on several nodes, under a launcher without Open MPI's variables (srun), or over the
 // user's choice nothing is set.

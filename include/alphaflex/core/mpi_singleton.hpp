@@ -9,8 +9,11 @@ namespace alphaflex {
 /// could MPI_Comm_spawn, which alphaflex never does): 0.3-0.5 s of wall time of every single-rank
 /// run. Sets OMPI_MCA_ess_singleton_isolated=1, which makes the singleton run alone, only when no
 /// launcher started this process (mpirun, srun/PMIx set OMPI_COMM_WORLD_SIZE, PMIX_RANK, PMI_RANK
-/// or PMI_SIZE) and the user has not set it (an explicit setting wins). Other MPI implementations
-/// ignore the variable.
+/// or PMI_SIZE) and the user has not set it (an explicit setting wins). An isolated singleton
+/// then also gets OMPI_MCA_orte_create_session_dirs=0 (unless the user set it): all isolated
+/// singletons share one session directory, and concurrent runs (a scripted sweep, ctest -j)
+/// raced on creating and removing it, one in a few hundred failing in MPI_Init. Other MPI
+/// implementations ignore both variables.
 void avoid_singleton_daemon();
 
 /// Call before MPI_Init. When every rank of the job is on this node (a singleton, or mpirun's
