@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +49,39 @@ TEST(BlasLibrary, NamesTheObjectThatComputes) {
   }
 }
 
+// The environment variables a test of the MPI start sets, saved when made and put back when
+// destroyed, so that the test's settings never leak into the process's other tests.
+class MpiEnvironmentSandbox {
+ public:
+  explicit MpiEnvironmentSandbox(std::vector<std::string> keys) : keys_(std::move(keys)) {
+    for (const auto& k : keys_) {
+      const char* v = std::getenv(k.c_str());
+      saved_.emplace_back(v != nullptr, v ? v : "");
+    }
+  }
+  ~MpiEnvironmentSandbox() {
+    for (std::size_t i = 0; i < keys_.size(); ++i)
+      if (saved_[i].first) setenv(keys_[i].c_str(), saved_[i].second.c_str(), 1);
+      else unsetenv(keys_[i].c_str());
+  }
+  MpiEnvironmentSandbox(const MpiEnvironmentSandbox&) = delete;
+  MpiEnvironmentSandbox& operator=(const MpiEnvironmentSandbox&) = delete;
+
+  /// Every key unset, then only these set.
+  void only(std::initializer_list<std::pair<const char*, const char*>> set) const {
+    for (const auto& k : keys_) unsetenv(k.c_str());
+    for (const auto& [k, v] : set) setenv(k, v, 1);
+  }
+  static std::string value(const char* key) {
+    const char* v = std::getenv(key);
+    return v ? v : "(unset)";
+  }
+
+ private:
+  std::vector<std::string> keys_;
+  std::vector<std::pair<bool, std::string>> saved_;
+};
+
 // The daemon-free singleton is asked for only when no launcher started the process, and never
 // over the user's own setting.
 TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
@@ -82,19 +116,12 @@ TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
 // With the daemon (isolated off by the user) the directory stays, since orted needs it; under a
 // launcher, or over the user's own setting, nothing is touched.
 TEST(MpiSingleton, IsolatedSingletonsMakeNoSharedSessionDirectory) {
-  const std::vector<std::string> keys{"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs",
-                                      "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"};
-  std::vector<std::pair<bool, std::string>> saved;
-  for (const auto& k : keys) {
-    const char* v = std::getenv(k.c_str());
-    saved.emplace_back(v != nullptr, v ? v : "");
-  }
+  MpiEnvironmentSandbox env({"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs",
+                             "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"});
   auto session_dirs = [&](std::initializer_list<std::pair<const char*, const char*>> set) {
-    for (const auto& k : keys) unsetenv(k.c_str());
-    for (const auto& [k, v] : set) setenv(k, v, 1);
+    env.only(set);
     alphaflex::avoid_singleton_daemon();
-    const char* value = std::getenv("OMPI_MCA_orte_create_session_dirs");
-    return std::string(value ? value : "(unset)");
+    return env.value("OMPI_MCA_orte_create_session_dirs");
   };
   EXPECT_EQ(session_dirs({}), "0") << "a singleton started by hand";
   EXPECT_EQ(session_dirs({{"OMPI_MCA_ess_singleton_isolated", "true"}}), "0");
@@ -103,28 +130,18 @@ TEST(MpiSingleton, IsolatedSingletonsMakeNoSharedSessionDirectory) {
   EXPECT_EQ(session_dirs({{"OMPI_COMM_WORLD_SIZE", "2"}}), "(unset)") << "mpirun's ranks keep theirs";
   EXPECT_EQ(session_dirs({{"PMIX_RANK", "0"}}), "(unset)");
   EXPECT_EQ(session_dirs({{"OMPI_MCA_orte_create_session_dirs", "1"}}), "1") << "the user's setting must win";
-
-  for (std::size_t i = 0; i < keys.size(); ++i)
-    if (saved[i].first) setenv(keys[i].c_str(), saved[i].second.c_str(), 1); else unsetenv(keys[i].c_str());
 }
 
 // Shared memory (ob1) is asked for only when every rank is on this node and the user chose no PML
 // or MTL; on several nodes, under a launcher without Open MPI's variables (srun), or over the
 // user's choice nothing is set.
 TEST(MpiStart, SharedMemoryOnlyOnOneNodeAndNotOverTheUser) {
-  const std::vector<std::string> keys{"OMPI_MCA_pml", "OMPI_MCA_mtl", "OMPI_COMM_WORLD_SIZE",
-                                      "OMPI_COMM_WORLD_LOCAL_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"};
-  std::vector<std::pair<bool, std::string>> saved;
-  for (const auto& k : keys) {
-    const char* v = std::getenv(k.c_str());
-    saved.emplace_back(v != nullptr, v ? v : "");
-  }
+  MpiEnvironmentSandbox sandbox({"OMPI_MCA_pml", "OMPI_MCA_mtl", "OMPI_COMM_WORLD_SIZE",
+                                 "OMPI_COMM_WORLD_LOCAL_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"});
   auto env = [&](std::initializer_list<std::pair<const char*, const char*>> set) {
-    for (const auto& k : keys) unsetenv(k.c_str());
-    for (const auto& [k, v] : set) setenv(k, v, 1);
+    sandbox.only(set);
     alphaflex::prefer_shared_memory_on_one_node();
-    const char* pml = std::getenv("OMPI_MCA_pml");
-    return std::string(pml ? pml : "(unset)");
+    return sandbox.value("OMPI_MCA_pml");
   };
   EXPECT_EQ(env({}), "ob1") << "a singleton is one node";
   EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "2"}, {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"}, {"PMIX_RANK", "0"}}), "ob1");
@@ -138,11 +155,6 @@ TEST(MpiStart, SharedMemoryOnlyOnOneNodeAndNotOverTheUser) {
   EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "2"}, {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"}, {"OMPI_MCA_mtl", "psm2"}}), "(unset)")
       << "the user's MTL must win";
   EXPECT_EQ(env({{"OMPI_MCA_mtl", "ofi"}}), "(unset)");
-
-  for (size_t i = 0; i < keys.size(); ++i) {
-    if (saved[i].first) setenv(keys[i].c_str(), saved[i].second.c_str(), 1);
-    else unsetenv(keys[i].c_str());
-  }
 }
 
 }  // namespace
