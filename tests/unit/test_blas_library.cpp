@@ -49,6 +49,8 @@ TEST(BlasLibrary, NamesTheObjectThatComputes) {
   }
 }
 
+using MpiEnvSettings = std::initializer_list<std::pair<const char*, const char*>>;
+
 // The environment variables a test of the MPI start sets, saved when made and put back when
 // destroyed, so that the test's settings never leak into the process's other tests.
 class MpiEnvironmentSandbox {
@@ -67,12 +69,12 @@ class MpiEnvironmentSandbox {
   MpiEnvironmentSandbox(const MpiEnvironmentSandbox&) = delete;
   MpiEnvironmentSandbox& operator=(const MpiEnvironmentSandbox&) = delete;
 
-  /// Every key unset, then only these set.
-  void only(std::initializer_list<std::pair<const char*, const char*>> set) const {
+  /// Every key unset, then only these set, then `start` (the function under test) called: what
+  /// it left in `key`, or "(unset)".
+  std::string after(MpiEnvSettings set, void (*start)(), const char* key) const {
     for (const auto& k : keys_) unsetenv(k.c_str());
     for (const auto& [k, v] : set) setenv(k, v, 1);
-  }
-  static std::string value(const char* key) {
+    start();
     const char* v = std::getenv(key);
     return v ? v : "(unset)";
   }
@@ -85,30 +87,16 @@ class MpiEnvironmentSandbox {
 // The daemon-free singleton is asked for only when no launcher started the process, and never
 // over the user's own setting.
 TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
-  const char* key = "OMPI_MCA_ess_singleton_isolated";
-  const char* saved = std::getenv(key);
-  const std::string saved_value = saved ? saved : "";
-  const char* launcher = std::getenv("OMPI_COMM_WORLD_SIZE");
-  const std::string launcher_value = launcher ? launcher : "";
-
-  unsetenv(key);
-  setenv("OMPI_COMM_WORLD_SIZE", "2", 1);
-  alphaflex::avoid_singleton_daemon();
-  EXPECT_EQ(std::getenv(key), nullptr) << "set under a launcher";
-
-  unsetenv("OMPI_COMM_WORLD_SIZE");
-  const bool other_launcher = std::getenv("PMIX_RANK") || std::getenv("PMI_RANK") || std::getenv("PMI_SIZE");
-  alphaflex::avoid_singleton_daemon();
-  if (!other_launcher) {
-    ASSERT_NE(std::getenv(key), nullptr);
-    EXPECT_STREQ(std::getenv(key), "1");
-  }
-  setenv(key, "0", 1);
-  alphaflex::avoid_singleton_daemon();
-  EXPECT_STREQ(std::getenv(key), "0") << "the user's setting must win";
-
-  if (saved) setenv(key, saved_value.c_str(), 1); else unsetenv(key);
-  if (launcher) setenv("OMPI_COMM_WORLD_SIZE", launcher_value.c_str(), 1);
+  MpiEnvironmentSandbox env({"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs",
+                             "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"});
+  auto isolated = [&](MpiEnvSettings set) {
+    return env.after(set, alphaflex::avoid_singleton_daemon, "OMPI_MCA_ess_singleton_isolated");
+  };
+  EXPECT_EQ(isolated({}), "1") << "a singleton started by hand";
+  EXPECT_EQ(isolated({{"OMPI_COMM_WORLD_SIZE", "2"}}), "(unset)") << "set under mpirun";
+  EXPECT_EQ(isolated({{"PMIX_RANK", "0"}}), "(unset)") << "set under a PMIx launcher";
+  EXPECT_EQ(isolated({{"PMI_SIZE", "2"}}), "(unset)") << "set under a PMI launcher";
+  EXPECT_EQ(isolated({{"OMPI_MCA_ess_singleton_isolated", "0"}}), "0") << "the user's setting must win";
 }
 
 // An isolated singleton makes no session directory: every one of them is job 1 of job family 0,
@@ -118,10 +106,8 @@ TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
 TEST(MpiSingleton, IsolatedSingletonsMakeNoSharedSessionDirectory) {
   MpiEnvironmentSandbox env({"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs",
                              "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"});
-  auto session_dirs = [&](std::initializer_list<std::pair<const char*, const char*>> set) {
-    env.only(set);
-    alphaflex::avoid_singleton_daemon();
-    return env.value("OMPI_MCA_orte_create_session_dirs");
+  auto session_dirs = [&](MpiEnvSettings set) {
+    return env.after(set, alphaflex::avoid_singleton_daemon, "OMPI_MCA_orte_create_session_dirs");
   };
   EXPECT_EQ(session_dirs({}), "0") << "a singleton started by hand";
   EXPECT_EQ(session_dirs({{"OMPI_MCA_ess_singleton_isolated", "true"}}), "0");
@@ -138,10 +124,8 @@ TEST(MpiSingleton, IsolatedSingletonsMakeNoSharedSessionDirectory) {
 TEST(MpiStart, SharedMemoryOnlyOnOneNodeAndNotOverTheUser) {
   MpiEnvironmentSandbox sandbox({"OMPI_MCA_pml", "OMPI_MCA_mtl", "OMPI_COMM_WORLD_SIZE",
                                  "OMPI_COMM_WORLD_LOCAL_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"});
-  auto env = [&](std::initializer_list<std::pair<const char*, const char*>> set) {
-    sandbox.only(set);
-    alphaflex::prefer_shared_memory_on_one_node();
-    return sandbox.value("OMPI_MCA_pml");
+  auto env = [&](MpiEnvSettings set) {
+    return sandbox.after(set, alphaflex::prefer_shared_memory_on_one_node, "OMPI_MCA_pml");
   };
   EXPECT_EQ(env({}), "ob1") << "a singleton is one node";
   EXPECT_EQ(env({{"OMPI_COMM_WORLD_SIZE", "2"}, {"OMPI_COMM_WORLD_LOCAL_SIZE", "2"}, {"PMIX_RANK", "0"}}), "ob1");
