@@ -84,11 +84,16 @@ class MpiEnvironmentSandbox {
   std::vector<std::pair<bool, std::string>> saved_;
 };
 
+/// What avoid_singleton_daemon reads and writes: its two settings and the launchers' markers.
+std::vector<std::string> singleton_variables() {
+  return {"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs", "OMPI_COMM_WORLD_SIZE",
+          "PMIX_RANK", "PMI_RANK", "PMI_SIZE"};
+}
+
 // The daemon-free singleton is asked for only when no launcher started the process, and never
 // over the user's own setting.
 TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
-  MpiEnvironmentSandbox env({"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs",
-                             "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"});
+  MpiEnvironmentSandbox env(singleton_variables());
   auto isolated = [&](MpiEnvSettings set) {
     return env.after(set, alphaflex::avoid_singleton_daemon, "OMPI_MCA_ess_singleton_isolated");
   };
@@ -104,8 +109,7 @@ TEST(MpiSingleton, OnlyWithoutALauncherAndNotOverTheUser) {
 // With the daemon (isolated off by the user) the directory stays, since orted needs it; under a
 // launcher, or over the user's own setting, nothing is touched.
 TEST(MpiSingleton, IsolatedSingletonsMakeNoSharedSessionDirectory) {
-  MpiEnvironmentSandbox env({"OMPI_MCA_ess_singleton_isolated", "OMPI_MCA_orte_create_session_dirs",
-                             "OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"});
+  MpiEnvironmentSandbox env(singleton_variables());
   auto session_dirs = [&](MpiEnvSettings set) {
     return env.after(set, alphaflex::avoid_singleton_daemon, "OMPI_MCA_orte_create_session_dirs");
   };
